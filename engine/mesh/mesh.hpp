@@ -1,0 +1,34 @@
+#pragma once
+// Mesh: triangles and named physical groups as Gmsh produced them, before blocks are formed.
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "engine/scene/scene.hpp"
+
+namespace rockdd {
+
+/// Nodes, counter-clockwise triangles, and the physical names a scene refers to.
+/// Only nodes used by at least one triangle are kept, numbered 0..n-1 without gaps.
+struct Mesh {
+  std::vector<double> xy;                          // 2 per node
+  std::vector<std::int32_t> triangles;             // 3 per element, counter-clockwise
+  std::vector<std::int32_t> element_surface;       // per element: index into surface_body
+  std::vector<std::string> surface_body;           // per Gmsh surface entity: physical name or ""
+  std::map<std::string, std::vector<std::array<std::int32_t, 2>>> curves;  // physical curve → edges
+  std::map<std::string, std::vector<std::int32_t>> points;                  // physical point → nodes
+  std::size_t num_nodes() const { return xy.size() / 2; }
+  std::size_t num_elements() const { return triangles.size() / 3; }
+};
+
+/// Meshes (or reads) what `spec` describes through the Gmsh API; validates the result.
+/// `scene_file` names the scene in error messages. Throws InputError on bad input.
+Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file);
+
+/// Checks triangles (zero or inverted area, bad node ids) and names; throws InputError.
+void validate_mesh(const Mesh& mesh, const std::string& source);
+
+}  // namespace rockdd

@@ -1,0 +1,50 @@
+#pragma once
+// Constant-strain triangle (CST): pure functions over plain arrays.
+//
+// Conventions, shared by every caller:
+//  - xy[6] = {x0, y0, x1, y1, x2, y2}, nodes counter-clockwise (positive area).
+//  - u[6]  = {ux0, uy0, ux1, uy1, ux2, uy2}; element dof order matches xy.
+//  - strain eps[3] = {exx, eyy, gxy} with gxy the engineering shear strain (2 exy).
+//  - stress sig[3] = {sxx, syy, sxy}; tension positive.
+//  - 6x6 element matrices are row-major, k[6 * a + b].
+//  - t is the thickness; every matrix and force scales with it.
+
+namespace rockdd::kernels {
+
+/// Plane stress or plane strain: selects the elasticity matrix.
+enum class PlaneKind { stress, strain };
+
+/// Signed area of the triangle (positive when counter-clockwise).
+double cst_signed_area(const double xy[6]);
+
+/// Shape-function derivatives: b[i] = dN_i/dx * 2A, c[i] = dN_i/dy * 2A; returns signed area.
+double cst_gradients(const double xy[6], double b[3], double c[3]);
+
+/// Isotropic elasticity matrix D (3x3 row-major) mapping {exx, eyy, gxy} to {sxx, syy, sxy}.
+void elasticity_matrix(double young, double poisson, PlaneKind plane, double d[9]);
+
+/// Element stiffness k = t A B^T D B (6x6 row-major).
+void cst_stiffness(const double xy[6], const double d[9], double t, double k[36]);
+
+/// Strain of the element for nodal displacements u.
+void cst_strain(const double xy[6], const double u[6], double eps[3]);
+
+/// Stress from strain: sig = D eps.
+void cst_stress(const double d[9], const double eps[3], double sig[3]);
+
+/// Nodal internal force f = t A B^T sig (6 values, in element dof order).
+void cst_internal_force(const double xy[6], const double sig[3], double t, double f[6]);
+
+/// Lumped mass per node (rho t A / 3): the same for the x and y dof of each node.
+double cst_lumped_mass(double area, double density, double t);
+
+/// Consistent mass (6x6 row-major): rho t A / 12 * [2 1 1; 1 2 1; 1 1 2] per direction.
+void cst_consistent_mass(double area, double density, double t, double m[36]);
+
+/// Out-of-plane strain: 0 in plane strain, -nu/(1-nu)(exx+eyy) in plane stress.
+double out_of_plane_strain(const double eps[3], double poisson, PlaneKind plane);
+
+/// Out-of-plane stress: nu (sxx+syy) in plane strain, 0 in plane stress.
+double out_of_plane_stress(const double sig[3], double poisson, PlaneKind plane);
+
+}  // namespace rockdd::kernels
