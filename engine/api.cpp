@@ -1,1 +1,18 @@
-// (being written)
+#include "engine/mesh/mesh.hpp"
+#include "engine/rockdd.hpp"
+#include "engine/scene/scene_reader.hpp"
+#include "engine/supported_features.hpp"
+
+namespace rockdd {
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  Scene scene = read_scene(file, overrides);
+  check_supported_features(scene);
+  return scene;
+}
+
+Model build_scene_model(const Scene& scene) { return build_model(scene, build_mesh(scene.mesh, scene.file)); }
+
+const char* version() { return ROCKDD_VERSION; }
+
+}  // namespace rockdd

@@ -8,6 +8,8 @@
 //  - stress sig[3] = {sxx, syy, sxy}; tension positive.
 //  - 6x6 element matrices are row-major, k[6 * a + b].
 //  - t is the thickness; every matrix and force scales with it.
+//  - Element integrals use |A|, so a clockwise triangle gets the same k and f as its
+//    counter-clockwise reordering; a degenerate triangle (A = 0) is the caller's to reject.
 
 namespace rockdd::kernels {
 
@@ -21,6 +23,8 @@ double cst_signed_area(const double xy[6]);
 double cst_gradients(const double xy[6], double b[3], double c[3]);
 
 /// Isotropic elasticity matrix D (3x3 row-major) mapping {exx, eyy, gxy} to {sxx, syy, sxy}.
+/// Requires -1 < poisson < 0.5: plane strain divides by (1 - 2 nu), so nu = 0.5 must be
+/// rejected by the caller (nu = 0.4999 still gives a finite D).
 void elasticity_matrix(double young, double poisson, PlaneKind plane, double d[9]);
 
 /// Element stiffness k = t A B^T D B (6x6 row-major).

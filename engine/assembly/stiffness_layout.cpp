@@ -1,0 +1,85 @@
+#include "engine/assembly/stiffness_layout.hpp"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+
+#include "engine/model/edge_adjacency.hpp"
+
+namespace rockdd {
+
+StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::int32_t num_nodes,
+                                       std::span<const std::int32_t> equation) {
+  const auto num_elements = static_cast<std::int32_t>(conn.size() / 3);
+  const NodeIncidence inc = build_node_incidence(conn, num_nodes);
+
+  // Neighbour nodes of each node (itself included), sorted: the node graph of the mesh.
+  std::vector<std::vector<std::int32_t>> neighbours(static_cast<std::size_t>(num_nodes));
+  tbb::parallel_for(tbb::blocked_range<std::int32_t>(0, num_nodes, 512), [&](auto range) {
+    for (std::int32_t n = range.begin(); n != range.end(); ++n) {
+      auto& nb = neighbours[n];
+      for (std::int32_t i = inc.offset[n]; i < inc.offset[n + 1]; ++i)
+        for (int k = 0; k < 3; ++k) nb.push_back(conn[3 * inc.element[i] + k]);
+      std::sort(nb.begin(), nb.end());
+      nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+    }
+  });
+
+  // Column j of the upper triangle holds the equations i <= j of the neighbour dofs.
+  // Equations increase with dof index, so walking sorted neighbours yields sorted rows.
+  std::int32_t num_equations = 0;
+  for (const std::int32_t eq : equation) num_equations = std::max(num_equations, eq + 1);
+  std::vector<std::int32_t> dof_of_equation(static_cast<std::size_t>(num_equations));
+  for (std::size_t d = 0; d < equation.size(); ++d)
+    if (equation[d] >= 0) dof_of_equation[equation[d]] = static_cast<std::int32_t>(d);
+
+  StiffnessLayout layout;
+  SparsityPattern& p = layout.pattern;
+  p.n = num_equations;
+  p.col_ptr.assign(static_cast<std::size_t>(num_equations) + 1, 0);
+  auto for_each_row = [&](std::int32_t col, auto&& visit) {
+    const std::int32_t node = dof_of_equation[col] / 2;
+    for (const std::int32_t m : neighbours[node])
+      for (int c = 0; c < 2; ++c) {
+        const std::int32_t row = equation[2 * m + c];
+        if (row >= 0 && row <= col) visit(row);
+      }
+  };
+  tbb::parallel_for(std::int32_t{0}, num_equations, [&](std::int32_t col) {
+    std::int32_t count = 0;
+    for_each_row(col, [&](std::int32_t) { ++count; });
+    p.col_ptr[col + 1] = count;
+  });
+  for (std::int32_t j = 0; j < num_equations; ++j) p.col_ptr[j + 1] += p.col_ptr[j];
+  p.row_idx.resize(static_cast<std::size_t>(p.col_ptr[num_equations]));
+  layout.diagonal.resize(static_cast<std::size_t>(num_equations));
+  tbb::parallel_for(std::int32_t{0}, num_equations, [&](std::int32_t col) {
+    std::int32_t pos = p.col_ptr[col];
+    for_each_row(col, [&](std::int32_t row) { p.row_idx[pos++] = row; });
+    layout.diagonal[col] = p.col_ptr[col + 1] - 1;  // the diagonal is the last row of its column
+  });
+
+  // Scatter map: element entry (a, b), a <= b, to the value index of (min eq, max eq).
+  layout.scatter.resize(static_cast<std::size_t>(num_elements) * kElementUpperEntries);
+  tbb::parallel_for(tbb::blocked_range<std::int32_t>(0, num_elements, 1024), [&](auto range) {
+    for (std::int32_t e = range.begin(); e != range.end(); ++e) {
+      std::int32_t eq[6];
+      for (int a = 0; a < 6; ++a) eq[a] = equation[2 * conn[3 * e + a / 2] + a % 2];
+      std::int32_t* out = &layout.scatter[static_cast<std::size_t>(e) * kElementUpperEntries];
+      for (int a = 0; a < 6; ++a)
+        for (int b = a; b < 6; ++b) {
+          if (eq[a] < 0 || eq[b] < 0) {
+            *out++ = -1;
+            continue;
+          }
+          const std::int32_t row = std::min(eq[a], eq[b]), col = std::max(eq[a], eq[b]);
+          const auto first = p.row_idx.begin() + p.col_ptr[col];
+          const auto last = p.row_idx.begin() + p.col_ptr[col + 1];
+          *out++ = static_cast<std::int32_t>(std::lower_bound(first, last, row) - p.row_idx.begin());
+        }
+    }
+  });
+  return layout;
+}
+
+}  // namespace rockdd

@@ -1,0 +1,27 @@
+#pragma once
+// Symbolic side of assembly: the sparsity pattern over free equations, computed once per
+// topology, and the scatter map that sends each element entry to its nonzero.
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "engine/assembly/sparsity_pattern.hpp"
+
+namespace rockdd {
+
+/// Entries of the upper triangle of a 6x6 element matrix, (a, b) with a <= b, row-major.
+inline constexpr int kElementUpperEntries = 21;
+
+/// Pattern, scatter map and diagonal positions of the global stiffness.
+struct StiffnessLayout {
+  SparsityPattern pattern;
+  std::vector<std::int32_t> scatter;               // 21 per element; value index or -1
+  std::vector<std::int32_t> diagonal;              // per equation: value index of (i, i)
+};
+
+/// Builds the layout for elements `conn` over `num_nodes` nodes, where `equation[dof]` is the
+/// equation number of each dof (2 per node) or -1 for a prescribed dof.
+StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::int32_t num_nodes,
+                                       std::span<const std::int32_t> equation);
+
+}  // namespace rockdd

@@ -1,0 +1,81 @@
+#include "engine/loading/boundary_conditions.hpp"
+
+#include <Eigen/Dense>
+
+#include <string>
+
+#include "engine/errors.hpp"
+#include "engine/loading/named_nodes.hpp"
+
+namespace rockdd {
+
+BoundaryConditions build_boundary_conditions(const Scene& scene, const Model& model) {
+  const std::size_t num_dofs = model.X.size();
+  BoundaryConditions bc;
+  bc.prescribed.assign(num_dofs, 0);
+  bc.velocity.assign(num_dofs, 0.0);
+  for (std::size_t i = 0; i < scene.boundaries.size(); ++i) {
+    const BoundarySpec& b = scene.boundaries[i];
+    const auto nodes = nodes_named(model, b.on, scene.file.string(),
+                                   "boundary[" + std::to_string(i) + "].on");
+    for (const std::int32_t n : nodes) {
+      const bool fix[2] = {b.fix_x, b.fix_y};
+      const std::optional<double> vel[2] = {b.velocity_x, b.velocity_y};
+      for (int c = 0; c < 2; ++c) {
+        if (!fix[c] && !vel[c]) continue;
+        bc.prescribed[2 * n + c] = 1;
+        bc.velocity[2 * n + c] = vel[c].value_or(0.0);
+      }
+    }
+  }
+  bc.equation.assign(num_dofs, -1);
+  for (std::size_t d = 0; d < num_dofs; ++d)
+    if (!bc.prescribed[d]) bc.equation[d] = bc.num_equations++;
+  return bc;
+}
+
+void check_static_restraint(const Scene& scene, const Model& model, const BoundaryConditions& bc) {
+  // For each block, G = sum over prescribed dofs of r r^T with r the dof's value in the three
+  // rigid modes (x translation, y translation, rotation about the block centroid). The block
+  // is held exactly when G is regular.
+  const auto num_blocks = static_cast<std::size_t>(model.num_blocks);
+  std::vector<Eigen::Vector2d> centroid(num_blocks, Eigen::Vector2d::Zero());
+  std::vector<double> count(num_blocks, 0.0), size(num_blocks, 0.0);
+  for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
+    centroid[model.node_block[n]] += Eigen::Vector2d(model.X[2 * n], model.X[2 * n + 1]);
+    count[model.node_block[n]] += 1.0;
+  }
+  for (std::size_t b = 0; b < num_blocks; ++b) centroid[b] /= std::max(count[b], 1.0);
+  for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
+    const Eigen::Vector2d r = Eigen::Vector2d(model.X[2 * n], model.X[2 * n + 1]) - centroid[model.node_block[n]];
+    size[model.node_block[n]] = std::max(size[model.node_block[n]], r.norm());
+  }
+  std::vector<Eigen::Matrix3d> g(num_blocks, Eigen::Matrix3d::Zero());
+  for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
+    const std::int32_t b = model.node_block[n];
+    const double L = std::max(size[b], 1e-300);
+    const double dx = (model.X[2 * n] - centroid[b].x()) / L, dy = (model.X[2 * n + 1] - centroid[b].y()) / L;
+    if (bc.prescribed[2 * n]) { Eigen::Vector3d r(1, 0, -dy); g[b] += r * r.transpose(); }
+    if (bc.prescribed[2 * n + 1]) { Eigen::Vector3d r(0, 1, dx); g[b] += r * r.transpose(); }
+  }
+  for (std::size_t b = 0; b < num_blocks; ++b) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(g[b]);
+    if (eig.eigenvalues()(0) > 1e-10) continue;
+    const Eigen::Vector3d mode = eig.eigenvectors().col(0);
+    std::string free_motion = std::abs(mode(2)) > 0.5 ? "rotation"
+                              : std::abs(mode(0)) >= std::abs(mode(1)) ? "x translation"
+                                                                       : "y translation";
+    std::string body;
+    for (std::int32_t e = 0; e < model.num_elements(); ++e)
+      if (model.element_block[e] == static_cast<std::int32_t>(b)) {
+        body = model.sets.bodies[model.element_body[e]];
+        break;
+      }
+    throw InputError(scene.file.string(), "boundary",
+                     "static analysis needs every block restrained, but block " + std::to_string(b) +
+                         " (body '" + body + "') is free in " + free_motion +
+                         ": add [[boundary]] constraints or use analysis = \"quasi-static\"");
+  }
+}
+
+}  // namespace rockdd

@@ -1,0 +1,28 @@
+#pragma once
+// Prescribed dofs (fixed or moving at an imposed velocity) and the equation numbering of
+// the free dofs that the stiffness is assembled over.
+#include <cstdint>
+#include <vector>
+
+#include "engine/model/model.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace rockdd {
+
+/// Per-dof constraint data (2 dofs per node).
+struct BoundaryConditions {
+  std::vector<std::uint8_t> prescribed;            // 1 when the dof is fixed or moving
+  std::vector<double> velocity;                    // imposed velocity (0 for fixed dofs)
+  std::vector<std::int32_t> equation;              // equation of a free dof, -1 if prescribed
+  std::int32_t num_equations = 0;
+};
+
+/// Applies the scene's [[boundary]] entries in order (a later entry overrides an earlier one
+/// on shared dofs) and numbers the free dofs in dof order.
+BoundaryConditions build_boundary_conditions(const Scene& scene, const Model& model);
+
+/// A static analysis needs every block held against its three rigid-body modes; throws
+/// InputError naming the first block that is not (and its body).
+void check_static_restraint(const Scene& scene, const Model& model, const BoundaryConditions& bc);
+
+}  // namespace rockdd

@@ -1,0 +1,55 @@
+#pragma once
+// The files of one run in <out>/<scene name>/: history.csv, frames/ with frames.pvd,
+// profiles/, summary.json. Every file appears complete or not at all.
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/model/model.hpp"
+#include "engine/output/atomic_file.hpp"
+#include "engine/scene/scene.hpp"
+
+namespace rockdd {
+
+/// Energy totals over the thickness (J), the last four history columns.
+struct EnergyBalance {
+  double kinetic = 0, strain = 0, external_work = 0, dissipated = 0;
+};
+
+/// Writes the run's files; history.csv is committed by finish() (or on destruction).
+class RunOutputs {
+ public:
+  /// Creates the run folder (and frames/, profiles/ when needed) and starts history.csv.
+  RunOutputs(const Scene& scene, const std::filesystem::path& root,
+             const std::vector<std::string>& probe_columns, bool line_probes);
+  ~RunOutputs();
+  RunOutputs(const RunOutputs&) = delete;
+  RunOutputs& operator=(const RunOutputs&) = delete;
+
+  /// Appends one history row and updates the probe peaks.
+  void history_row(long step, double time, double dt, const std::vector<double>& probe_values,
+                   const EnergyBalance& energy);
+  /// Writes frames/frame_<step>.vtu with the scene's output fields, and rewrites frames.pvd.
+  void frame(const Model& model, long step, double time);
+  /// Largest magnitude seen of each probe column.
+  const std::map<std::string, double>& peaks() const { return peaks_; }
+  /// Run folder, <root>/<scene name>.
+  const std::filesystem::path& dir() const { return dir_; }
+  /// Commits history.csv and writes summary.json.
+  void finish(const nlohmann::json& summary);
+
+ private:
+  std::filesystem::path dir_;
+  std::vector<std::string> fields_;
+  std::vector<std::string> columns_;
+  std::map<std::string, double> peaks_;
+  std::unique_ptr<AtomicFile> history_;
+  std::vector<std::pair<double, std::string>> frames_;
+};
+
+}  // namespace rockdd

@@ -1,0 +1,28 @@
+#pragma once
+// rockdd's public API: what the command line, the tests and other tools call.
+//
+//   rockdd::Scene scene = rockdd::load_scene("data/brazilian_disk_elastic.toml");
+//   rockdd::Simulation sim(scene, rockdd::build_scene_model(scene));
+//   rockdd::RunResult result = sim.run({.out_root = "out", .threads = 2});
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "engine/errors.hpp"
+#include "engine/model/model.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/simulation.hpp"
+
+namespace rockdd {
+
+/// Reads and validates a scene file (with `--set key.path=value` overrides) and checks that
+/// every feature it uses is available. Throws InputError.
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+
+/// Meshes the scene through Gmsh and builds its model (blocks, materials, named sets).
+Model build_scene_model(const Scene& scene);
+
+/// The rockdd version string.
+const char* version();
+
+}  // namespace rockdd

@@ -1,0 +1,98 @@
+#pragma once
+// The step loop of the paper's flowchart (Fig. 3), and nothing else: each stage lives in
+// its own file and this one calls them in order.
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "engine/assembly/element_coloring.hpp"
+#include "engine/assembly/stiffness_layout.hpp"
+#include "engine/loading/boundary_conditions.hpp"
+#include "engine/model/model.hpp"
+#include "engine/output/run_outputs.hpp"
+#include "engine/scene/scene.hpp"
+#include "engine/solver/cholmod_solver.hpp"
+#include "engine/time/step_control.hpp"
+#include "engine/timers.hpp"
+
+namespace rockdd {
+
+class Probes;
+
+/// What an observer sees after each committed step.
+struct StepReport {
+  long step = 0;
+  double time = 0, dt = 0, end_time = 0;
+  long num_steps = 0;                              // planned steps; 0 when time-driven
+};
+
+/// How to run: where outputs go, threads, and a per-step callback.
+struct RunOptions {
+  std::filesystem::path out_root;                  // empty: the scene's output.dir
+  int threads = 0;                                 // 0: every hardware thread
+  bool write_outputs = true;
+  std::function<void(const StepReport&, const Model&)> on_step;
+};
+
+/// Outcome of a run: "ok", or "failed" with the reason; the summary.json content.
+struct RunResult {
+  bool ok = true;
+  std::string reason;
+  nlohmann::json summary;
+};
+
+/// One simulation of one scene. Construction resolves every name the scene uses and sets
+/// up the symbolic stages (pattern, scatter map, colouring, CHOLMOD analysis) once.
+class Simulation {
+ public:
+  /// Throws InputError for a scene the model cannot satisfy (unknown names, unrestrained
+  /// static blocks).
+  Simulation(Scene scene, Model model);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;
+  Simulation& operator=(const Simulation&) = delete;
+
+  /// Runs to the end; numerical failures end the run with ok = false and the reason.
+  RunResult run(const RunOptions& options);
+
+  const Model& model() const { return model_; }
+  const Scene& scene() const { return scene_; }
+  const SolverStats& solver_stats() const { return solver_.stats(); }
+  const StageTimers& timers() const { return timers_; }
+
+ private:
+  /// One step attempt of length dt from the committed state; returns the increment.
+  bool attempt_step(long step, double dt, double load_factor, StepControl& control);
+  /// Reassembles and refactorizes K_eff when the mass coefficient or moduli changed.
+  void prepare_system(double mass_coefficient);
+  void commit_step(double dt);
+  EnergyBalance energy() const;
+  void evaluate_probes(std::vector<double>& row);
+  nlohmann::json summary(const RunResult& result, double wall_seconds, int threads) const;
+
+  Scene scene_;
+  Model model_;
+  BoundaryConditions bc_;
+  std::vector<double> reference_loads_;
+  ElementColoring coloring_;
+  StiffnessLayout layout_;
+  CholmodSolver solver_;
+  std::vector<double> values_;
+  double factorized_mass_coefficient_ = -1.0;
+  std::unique_ptr<Probes> probes_;
+
+  // Step state (2 per node unless noted).
+  std::vector<double> acceleration_, f_int_, f_ext_, f_ext_old_, reaction_, reaction_old_;
+  std::vector<double> u_trial_, du_, rhs_;         // rhs_ is per equation
+  double external_work_ = 0.0;
+
+  long steps_ = 0, redone_steps_ = 0;
+  StageTimers timers_;
+};
+
+}  // namespace rockdd

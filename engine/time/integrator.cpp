@@ -1,0 +1,52 @@
+#include "engine/time/integrator.hpp"
+
+#include <cstdint>
+
+namespace rockdd {
+
+InertiaTerms inertia_terms(Analysis analysis, Integrator integrator, double dt) {
+  if (analysis == Analysis::static_) return {};
+  const bool newmark = integrator == Integrator::newmark;
+  InertiaTerms terms;
+  terms.mass_coefficient = (newmark ? 4.0 : 2.0) / (dt * dt);
+  if (analysis == Analysis::dynamic) {
+    terms.velocity_coefficient = (newmark ? 4.0 : 2.0) / dt;
+    terms.acceleration_coefficient = newmark ? 1.0 : 0.0;
+  }
+  return terms;
+}
+
+void update_velocity(Analysis analysis, Integrator integrator, double dt, std::span<const double> du,
+                     std::span<const std::uint8_t> prescribed, std::span<const double> imposed_velocity,
+                     std::span<double> v, std::span<double> a) {
+  for (std::size_t d = 0; d < du.size(); ++d) {
+    if (prescribed[d]) {
+      v[d] = imposed_velocity[d];
+      a[d] = 0.0;
+      continue;
+    }
+    switch (analysis) {
+      case Analysis::static_:
+        v[d] = 0.0;
+        a[d] = 0.0;
+        break;
+      case Analysis::quasi_static:  // the step's mean velocity; the next step starts at rest
+        v[d] = du[d] / dt;
+        a[d] = 0.0;
+        break;
+      case Analysis::dynamic:
+        if (integrator == Integrator::newmark) {
+          const double a_new = 4.0 * du[d] / (dt * dt) - 4.0 * v[d] / dt - a[d];
+          v[d] += 0.5 * dt * (a[d] + a_new);
+          a[d] = a_new;
+        } else {
+          const double v_new = 2.0 * du[d] / dt - v[d];
+          a[d] = (v_new - v[d]) / dt;
+          v[d] = v_new;
+        }
+        break;
+    }
+  }
+}
+
+}  // namespace rockdd

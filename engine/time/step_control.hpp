@@ -1,0 +1,31 @@
+#pragma once
+// Step-size control: a step that fails a check is redone with half the step; dt grows
+// back by 1.5x after a run of easy steps, never above dt_max; below dt_min the run fails.
+#include <optional>
+#include <string>
+
+#include "engine/scene/scene.hpp"
+
+namespace rockdd {
+
+/// The current dt and how it changes.
+class StepControl {
+ public:
+  explicit StepControl(const TimeSpec& time);
+  double dt() const { return dt_; }
+  /// Halves dt after a failed attempt; throws RunFailure (with `why`) when dt < dt_min.
+  void reject(long step, const std::string& why);
+  /// Records a committed step; grows dt after 10 easy steps in a row.
+  void accept(bool easy);
+  /// True when a step's largest displacement increment is acceptable.
+  bool displacement_ok(double max_increment) const;
+  long changes() const { return changes_; }
+
+ private:
+  double dt_, dt_min_, dt_max_;
+  std::optional<double> max_displacement_;
+  int easy_in_a_row_ = 0;
+  long changes_ = 0;
+};
+
+}  // namespace rockdd
