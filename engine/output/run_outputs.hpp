@@ -21,7 +21,8 @@ struct EnergyBalance {
   double kinetic = 0, strain = 0, external_work = 0, dissipated = 0;
 };
 
-/// Writes the run's files; history.csv is committed by finish() (or on destruction).
+/// Writes the run's files; history.csv appears only through finish(): a run that dies
+/// without finishing leaves no history that could pass for a complete one.
 class RunOutputs {
  public:
   /// Creates the run folder (and frames/, profiles/ when needed) and starts history.csv.
