@@ -83,8 +83,8 @@ void cst_strain(const double xy[6], const double u[6], double eps[3]) {
   const double inv2a = 0.5 / cst_gradients(xy, b, c);
   eps[0] = inv2a * (b[0] * u[0] + b[1] * u[2] + b[2] * u[4]);
   eps[1] = inv2a * (c[0] * u[1] + c[1] * u[3] + c[2] * u[5]);
-  eps[2] = inv2a * (c[0] * u[0] + b[0] * u[1] + c[1] * u[2] + b[1] * u[3] + c[2] * u[4] +
-                    b[2] * u[5]);
+  eps[2] =
+      inv2a * (c[0] * u[0] + b[0] * u[1] + c[1] * u[2] + b[1] * u[3] + c[2] * u[4] + b[2] * u[5]);
 }
 
 void cst_stress(const double d[9], const double eps[3], double sig[3]) {

@@ -1,0 +1,107 @@
+// Throughput of the CST kernels over a pre-built array of random triangles.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <random>
+#include <vector>
+
+#include "kernels/cst.hpp"
+
+namespace {
+
+namespace k = rockdd::kernels;
+
+constexpr int kElements = 100000;
+
+// Counter-clockwise triangles of size about 1 (the kernels do not branch on shape).
+const std::vector<double>& triangles() {
+  static const std::vector<double> xy = [] {
+    std::mt19937_64 rng(1);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0), centre(0.0, 300.0);
+    std::vector<double> out(6 * kElements);
+    for (int e = 0; e < kElements; ++e) {
+      double* t = &out[6 * e];
+      do {
+        const double cx = centre(rng), cy = centre(rng);
+        for (int i = 0; i < 3; ++i) {
+          t[2 * i] = cx + unit(rng);
+          t[2 * i + 1] = cy + unit(rng);
+        }
+      } while (std::abs(k::cst_signed_area(t)) < 0.05);
+      if (k::cst_signed_area(t) < 0.0) {
+        std::swap(t[2], t[4]);
+        std::swap(t[3], t[5]);
+      }
+    }
+    return out;
+  }();
+  return xy;
+}
+
+const std::vector<double>& displacements() {
+  static const std::vector<double> u = [] {
+    std::mt19937_64 rng(2);
+    std::uniform_real_distribution<double> unit(-1e-3, 1e-3);
+    std::vector<double> out(6 * kElements);
+    for (double& v : out) v = unit(rng);
+    return out;
+  }();
+  return u;
+}
+
+// One element stiffness per element with a shared D (homogeneous material).
+void BM_CstStiffness(benchmark::State& state) {
+  const auto& xy = triangles();
+  double d[9], k36[36];
+  k::elasticity_matrix(2e10, 0.25, k::PlaneKind::strain, d);
+  for (auto _ : state) {
+    for (int e = 0; e < kElements; ++e) {
+      k::cst_stiffness(&xy[6 * e], d, 1.0, k36);
+      benchmark::DoNotOptimize(k36);
+    }
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kElements);
+}
+BENCHMARK(BM_CstStiffness)->Unit(benchmark::kMillisecond);
+
+// As the engine assembles: D rebuilt per element (damaged modulus), then k.
+void BM_ElasticityAndStiffness(benchmark::State& state) {
+  const auto& xy = triangles();
+  double d[9], k36[36];
+  for (auto _ : state) {
+    for (int e = 0; e < kElements; ++e) {
+      k::elasticity_matrix(2e10 * (1.0 - 1e-6 * (e & 1023)), 0.25, k::PlaneKind::strain, d);
+      k::cst_stiffness(&xy[6 * e], d, 1.0, k36);
+      benchmark::DoNotOptimize(k36);
+    }
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kElements);
+}
+BENCHMARK(BM_ElasticityAndStiffness)->Unit(benchmark::kMillisecond);
+
+// The internal-force pass: strain, stress and nodal force per element, forces stored.
+void BM_StrainStressInternalForce(benchmark::State& state) {
+  const auto& xy = triangles();
+  const auto& u = displacements();
+  std::vector<double> f(6 * kElements);
+  double d[9];
+  k::elasticity_matrix(2e10, 0.25, k::PlaneKind::strain, d);
+  for (auto _ : state) {
+    for (int e = 0; e < kElements; ++e) {
+      double eps[3], sig[3];
+      k::cst_strain(&xy[6 * e], &u[6 * e], eps);
+      k::cst_stress(d, eps, sig);
+      k::cst_internal_force(&xy[6 * e], sig, 1.0, &f[6 * e]);
+    }
+    benchmark::DoNotOptimize(f.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kElements);
+}
+BENCHMARK(BM_StrainStressInternalForce)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,258 @@
+#include "engine/scene/scene_sections.hpp"
+
+#include <algorithm>
+#include <climits>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "engine/errors.hpp"
+
+namespace rockdd {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// Stands in for a table the scene leaves out, so its defaults are recorded the same way.
+const toml::table& empty_table() {
+  static const toml::table empty;
+  return empty;
+}
+
+/// The reader of the optional table `key`, or of an empty table with the same key path.
+TableReader optional_table(TableReader& root, std::string_view key) {
+  if (auto table = sub_table(root, key)) return *table;
+  return TableReader(empty_table(), root.key_path(key), root.file(), root.defaults());
+}
+
+/// The scene name becomes the output folder `DIR/<name>/`: it must be one plain folder name.
+void check_folder_name(const TableReader& table, const std::string& name) {
+  const bool bad =
+      name == "." || name == ".." || name.find_first_of("/\\") != std::string::npos ||
+      std::any_of(name.begin(), name.end(), [](unsigned char c) { return c < 0x20 || c == 0x7f; });
+  if (bad) {
+    table.fail("name",
+               "expected a name usable as one folder name (no '/', not '.' or '..'), got \"" +
+                   name + "\"");
+  }
+}
+
+/// `geo` or `msh`: the file, resolved against the scene's folder, must exist and be readable.
+fs::path readable_file(const TableReader& table, std::string_view key, const fs::path& scene_dir) {
+  const std::string name = *table.string(key);
+  const fs::path file = (scene_dir / fs::path(name)).lexically_normal();
+  std::error_code error;
+  const auto status = fs::status(file, error);
+  std::string problem;
+  if (!fs::exists(status)) {
+    problem = "does not exist";
+  } else if (!fs::is_regular_file(status)) {
+    problem = "is not a regular file";
+  } else if (!std::ifstream(file)) {
+    problem = "cannot be read";
+  }
+  if (!problem.empty()) {
+    table.fail(key, "expected a readable file (relative to the scene's folder), got \"" + name +
+                        "\": " + file.string() + " " + problem);
+  }
+  return file;
+}
+
+/// Refuses each key of `keys` that `table` has, saying which mesh source they do not apply to.
+void refuse_keys(const TableReader& table, std::initializer_list<std::string_view> keys,
+                 const std::string& source) {
+  for (const std::string& key : table.present(keys)) {
+    table.fail(key, "expected no " + table.key_path(key) + " with " + source +
+                        ", got one (it belongs to another mesh source)");
+  }
+}
+
+/// [x, y] with both components > 0.
+Vec2 positive_pair(const TableReader& table, std::string_view key) {
+  const auto pair = table.vec2(key);
+  if (!pair)
+    table.fail(key, "expected an array of 2 numbers > 0, got nothing (the key is required)");
+  if ((*pair)[0] <= 0 || (*pair)[1] <= 0) {
+    table.fail(key, "expected an array of 2 numbers > 0, got " + describe(*table.find(key)));
+  }
+  return *pair;
+}
+
+/// [nx, ny], integers >= 1.
+std::array<int, 2> divisions(const TableReader& table, std::string_view key) {
+  const toml::node& node = *table.find(key);
+  const auto* array = node.as_array();
+  const auto count = [](const toml::node* n) {
+    return n && n->is_integer() && n->as_integer()->get() >= 1 && n->as_integer()->get() <= INT_MAX;
+  };
+  if (!array || array->size() != 2 || !count(array->get(0)) || !count(array->get(1))) {
+    table.fail(key, "expected an array of 2 integers >= 1 [nx, ny], got " + describe(node));
+  }
+  return {static_cast<int>(array->get(0)->as_integer()->get()),
+          static_cast<int>(array->get(1)->as_integer()->get())};
+}
+
+Vec2 origin_or_default(TableReader& table) {
+  if (auto origin = table.vec2("origin")) return *origin;
+  table.record_default("origin", "[0, 0]");
+  return {0.0, 0.0};
+}
+
+void read_rectangle(TableReader& table, MeshSpec& mesh) {
+  refuse_keys(table, {"radius", "flat_half_angle_deg"}, "shape = \"rectangle\"");
+  mesh.kind = MeshSpec::Kind::rectangle;
+  mesh.size = positive_pair(table, "size");
+  mesh.origin = origin_or_default(table);
+  if (table.has("divisions") && mesh.element_size) {
+    table.fail("divisions", "expected divisions or element_size for a rectangle, not both");
+  }
+  if (!table.has("divisions") && !mesh.element_size) {
+    table.fail("divisions",
+               "expected divisions = [nx, ny] or element_size for a rectangle, got neither");
+  }
+  if (table.has("divisions")) mesh.divisions = divisions(table, "divisions");
+}
+
+void read_disk(TableReader& table, MeshSpec& mesh) {
+  refuse_keys(table, {"size", "divisions"}, "shape = \"disk\"");
+  mesh.kind = MeshSpec::Kind::disk;
+  mesh.radius = table.required_number("radius", above(0));
+  mesh.flat_half_angle_deg =
+      table.number_or("flat_half_angle_deg", 0.0, between(0, true, 90, false));
+  mesh.origin = origin_or_default(table);
+  if (!mesh.element_size) {
+    table.fail("element_size",
+               "expected a number > 0 for a disk, got nothing (the key is required)");
+  }
+}
+
+}  // namespace
+
+Scene read_scene_header(TableReader& root) {
+  auto table = sub_table(root, "scene");
+  if (!table)
+    root.fail("scene", "expected a table [scene] with a name, got nothing (it is required)");
+  table->allow_only({"name", "analysis", "plane", "thickness", "gravity"});
+  Scene scene;
+  scene.name = table->required_string("name");
+  check_folder_name(*table, scene.name);
+  const std::string analysis =
+      table->choice_or("analysis", {"static", "quasi-static", "dynamic"}, "static");
+  scene.analysis = analysis == "dynamic"        ? Analysis::dynamic
+                   : analysis == "quasi-static" ? Analysis::quasi_static
+                                                : Analysis::static_;
+  scene.plane = table->choice_or("plane", {"stress", "strain"}, "stress") == "strain"
+                    ? PlaneMode::strain
+                    : PlaneMode::stress;
+  scene.thickness = table->number_or("thickness", 1.0, above(0));
+  if (auto gravity = table->vec2("gravity")) {
+    scene.gravity = *gravity;
+  } else {
+    table->record_default("gravity", "[0, 0]");
+  }
+  return scene;
+}
+
+TimeSpec read_time(TableReader& root, Analysis analysis) {
+  const bool is_static = analysis == Analysis::static_;
+  if (!is_static && !root.has("time")) {
+    // Point at the analysis line: that is what makes [time] required.
+    const toml::node& analysis_node = *root.find("scene")->as_table()->get("analysis");
+    throw InputError(where_of(analysis_node, root.file(), 0), "time",
+                     "expected a table [time] (dt and end or steps) for analysis = \"" +
+                         analysis_node.as_string()->get() + "\"" +
+                         ", got nothing (only a \"static\" scene may leave it out)");
+  }
+  TableReader table = optional_table(root, "time");
+  table.allow_only(
+      {"dt", "end", "steps", "dt_min", "max_step_displacement", "dt_max", "integrator"});
+  TimeSpec time;
+  time.dt =
+      is_static ? table.number_or("dt", 1.0, above(0)) : table.required_number("dt", above(0));
+  time.end = table.number("end", above(0));
+  if (auto steps = table.integer("steps", 1, INT_MAX)) time.steps = static_cast<int>(*steps);
+  if (time.end && time.steps) {
+    table.fail("steps", "expected time.end or time.steps, not both; got end = " +
+                            describe(*table.find("end")) +
+                            " and steps = " + std::to_string(*time.steps));
+  }
+  if (!root.has("time")) {
+    time.steps = 1;
+    table.record_default("steps", "1");
+  } else if (!time.end && !time.steps) {
+    table.fail_table("expected time.end or time.steps, got neither");
+  }
+  const std::string dt = number_text(time.dt);
+  time.dt_min = table.number_or("dt_min", time.dt * 1e-6, above(0));
+  if (time.dt_min > time.dt) {
+    table.fail("dt_min", "expected a number in (0, time.dt = " + dt + "], got " +
+                             describe(*table.find("dt_min")));
+  }
+  time.max_step_displacement = table.number("max_step_displacement", above(0));
+  time.dt_max = table.number_or("dt_max", time.dt, above(0));
+  if (time.dt_max < time.dt) {
+    table.fail("dt_max",
+               "expected a number >= time.dt = " + dt + ", got " + describe(*table.find("dt_max")));
+  }
+  time.integrator = table.choice_or("integrator", {"dda", "newmark"}, "dda") == "newmark"
+                        ? Integrator::newmark
+                        : Integrator::dda;
+  return time;
+}
+
+MeshSpec read_mesh(TableReader& root, const fs::path& scene_dir) {
+  auto table = sub_table(root, "mesh");
+  if (!table) {
+    root.fail("mesh",
+              "expected a table [mesh] with geo, msh or shape, got nothing (it is required)");
+  }
+  table->allow_only({"geo", "msh", "shape", "element_size", "size", "origin", "divisions", "radius",
+                     "flat_half_angle_deg"});
+  const auto sources = table->present({"geo", "msh", "shape"});
+  if (sources.empty())
+    table->fail_table("expected one of mesh.geo, mesh.msh, mesh.shape, got none");
+  if (sources.size() > 1) {
+    table->fail(sources[1], "expected exactly one of mesh.geo, mesh.msh, mesh.shape, got " +
+                                sources[0] + " and " + sources[1]);
+  }
+  MeshSpec mesh;
+  mesh.element_size = table->number("element_size", above(0));
+  if (sources[0] == "geo" || sources[0] == "msh") {
+    const std::string source = "mesh." + sources[0];
+    refuse_keys(*table, {"size", "origin", "divisions", "radius", "flat_half_angle_deg"}, source);
+    // A .msh is already meshed: a size cap would silently do nothing.
+    if (sources[0] == "msh") refuse_keys(*table, {"element_size"}, source);
+    mesh.kind = sources[0] == "geo" ? MeshSpec::Kind::geo : MeshSpec::Kind::msh;
+    mesh.file = readable_file(*table, sources[0], scene_dir);
+  } else if (*table->choice("shape", {"rectangle", "disk"}) == "rectangle") {
+    read_rectangle(*table, mesh);
+  } else {
+    read_disk(*table, mesh);
+  }
+  return mesh;
+}
+
+OutputSpec read_output(TableReader& root) {
+  TableReader table = optional_table(root, "output");
+  table.allow_only({"dir", "every", "fields"});
+  OutputSpec output;
+  if (auto dir = table.string("dir")) {
+    output.dir = *dir;
+  } else {
+    table.record_default("dir", output.dir.string());
+  }
+  if (auto every = table.integer("every", 0, INT_MAX)) {
+    output.every = static_cast<int>(*every);
+  } else {
+    table.record_default("every", std::to_string(output.every));
+  }
+  if (auto fields = table.strings("fields", {"displacement", "velocity", "stress", "principal",
+                                             "damage", "block", "material", "strain"})) {
+    output.fields = *fields;
+  } else {
+    table.record_default("fields", R"(["displacement", "stress", "damage", "block"])");
+  }
+  return output;
+}
+
+}  // namespace rockdd
