@@ -1,0 +1,175 @@
+// Assembly: the stiffness pattern and values, internal force, and thread independence.
+#include <gtest/gtest.h>
+#include <oneapi/tbb/global_control.h>
+
+#include <Eigen/Dense>
+#include <cstring>
+
+#include "engine/assembly/assemble_stiffness.hpp"
+#include "engine/assembly/element_coloring.hpp"
+#include "engine/assembly/internal_force.hpp"
+#include "engine/assembly/stiffness_layout.hpp"
+#include "engine/mesh/mesh.hpp"
+#include "engine/model/model.hpp"
+#include "test_support.hpp"
+
+namespace rockdd {
+namespace {
+
+const char* kRectangle = R"(
+[scene]
+name = "assembly"
+analysis = "static"
+plane = "stress"
+[mesh]
+shape = "rectangle"
+size = [2.0, 1.0]
+element_size = 0.2
+[[material]]
+body = "*"
+density = 2500.0
+young = 30e9
+poisson = 0.25
+[[boundary]]
+on = "left"
+fix = ["x", "y"]
+)";
+
+struct Assembled {
+  Model model;
+  StiffnessLayout layout;
+  ElementColoring coloring;
+  std::vector<std::int32_t> equation;
+  std::vector<double> values;
+};
+
+/// Assembles the scene's stiffness with every dof free or with the left edge eliminated.
+Assembled assemble(const std::string& text, bool all_free, double mass_coefficient = 0.0) {
+  test::TempDir dir;
+  const Scene scene = test::scene_from_text(text, dir.path());
+  Assembled a{build_scene_model(scene), {}, {}, {}, {}};
+  a.equation.assign(a.model.X.size(), 0);
+  std::int32_t next = 0;
+  std::vector<std::uint8_t> fixed(a.model.X.size(), 0);
+  if (!all_free)
+    for (std::size_t i = 0; i + 1 < a.model.sets.curve_edges["left"].size(); ++i)
+      for (int c = 0; c < 2; ++c) fixed[2 * a.model.sets.curve_edges["left"][i] + c] = 1;
+  for (std::size_t d = 0; d < a.equation.size(); ++d) a.equation[d] = fixed[d] ? -1 : next++;
+  a.coloring = color_elements(a.model.conn, a.model.num_nodes());
+  a.layout = build_stiffness_layout(a.model.conn, a.model.num_nodes(), a.equation);
+  a.values.assign(static_cast<std::size_t>(a.layout.pattern.nnz()), 0.0);
+  assemble_stiffness(a.model, a.coloring, a.layout, a.equation, mass_coefficient, a.values);
+  return a;
+}
+
+Eigen::MatrixXd dense(const SparsityPattern& p, const std::vector<double>& values) {
+  Eigen::MatrixXd k = Eigen::MatrixXd::Zero(p.n, p.n);
+  for (std::int32_t j = 0; j < p.n; ++j)
+    for (std::int32_t q = p.col_ptr[j]; q < p.col_ptr[j + 1]; ++q) {
+      k(p.row_idx[q], j) = values[q];
+      k(j, p.row_idx[q]) = values[q];
+    }
+  return k;
+}
+
+TEST(Coloring, ElementsOfOneColourShareNoNode) {
+  const Assembled a = assemble(kRectangle, true);
+  for (std::int32_t c = 0; c < a.coloring.num_colors(); ++c) {
+    std::vector<int> seen(static_cast<std::size_t>(a.model.num_nodes()), 0);
+    for (std::int32_t i = a.coloring.offset[c]; i < a.coloring.offset[c + 1]; ++i)
+      for (int k = 0; k < 3; ++k) EXPECT_EQ(seen[a.model.conn[3 * a.coloring.element[i] + k]]++, 0);
+  }
+  EXPECT_LE(a.coloring.num_colors(), 16);
+  EXPECT_EQ(a.coloring.element.size(), static_cast<std::size_t>(a.model.num_elements()));
+}
+
+TEST(Layout, PatternIsUpperTriangularSortedWithDiagonal) {
+  const Assembled a = assemble(kRectangle, false);
+  const SparsityPattern& p = a.layout.pattern;
+  for (std::int32_t j = 0; j < p.n; ++j) {
+    ASSERT_LT(p.col_ptr[j], p.col_ptr[j + 1]);
+    for (std::int32_t q = p.col_ptr[j]; q + 1 < p.col_ptr[j + 1]; ++q) EXPECT_LT(p.row_idx[q], p.row_idx[q + 1]);
+    EXPECT_EQ(p.row_idx[a.layout.diagonal[j]], j);
+  }
+}
+
+TEST(Assembly, FreeStiffnessHasExactlyThreeRigidModes) {
+  // K of an unconstrained body is symmetric positive semi-definite with the 3 rigid-body
+  // modes (2 translations, 1 rotation) as its null space: K r = 0 to round-off.
+  const Assembled a = assemble(kRectangle, true);
+  const Eigen::MatrixXd k = dense(a.layout.pattern, a.values);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(k);
+  const double largest = eig.eigenvalues().maxCoeff();
+  EXPECT_LT(std::abs(eig.eigenvalues()(2)), 1e-10 * largest);
+  EXPECT_GT(eig.eigenvalues()(3), 1e-8 * largest);
+  const auto n = a.model.num_nodes();
+  Eigen::VectorXd rotation(2 * n);
+  for (std::int32_t i = 0; i < n; ++i) {
+    rotation(2 * i) = -a.model.X[2 * i + 1];
+    rotation(2 * i + 1) = a.model.X[2 * i];
+  }
+  EXPECT_LT((k * rotation).norm(), 1e-10 * largest * rotation.norm());
+}
+
+TEST(Assembly, ConstrainedStiffnessIsSymmetricPositiveDefinite) {
+  const Assembled a = assemble(kRectangle, false);
+  const Eigen::MatrixXd k = dense(a.layout.pattern, a.values);
+  EXPECT_EQ(Eigen::LLT<Eigen::MatrixXd>(k).info(), Eigen::Success);
+}
+
+TEST(Assembly, MassCoefficientAddsLumpedMassToTheDiagonal) {
+  const Assembled a = assemble(kRectangle, true, 0.0);
+  const Assembled b = assemble(kRectangle, true, 4.0);
+  // Off-diagonal values are untouched; each diagonal gains 4 m_node.
+  double added = 0.0, diagonal_scale = 0.0;
+  for (std::size_t q = 0; q < a.values.size(); ++q) added += b.values[q] - a.values[q];
+  for (const std::int32_t q : a.layout.diagonal) diagonal_scale += std::abs(a.values[q]);
+  double mass = 0.0;
+  for (const double m : a.model.node_mass) mass += m;
+  // Total mass rho t A = 2500 * 1 * 2 per direction; two directions times the coefficient.
+  EXPECT_NEAR(mass, 2500.0 * 2.0, 1e-9);
+  EXPECT_NEAR(added, 4.0 * 2.0 * mass, 1e-14 * diagonal_scale);
+}
+
+TEST(Assembly, InternalForceEqualsStiffnessTimesDisplacement) {
+  const Assembled a = assemble(kRectangle, true);
+  const Eigen::MatrixXd k = dense(a.layout.pattern, a.values);
+  Eigen::VectorXd u = Eigen::VectorXd::Random(static_cast<Eigen::Index>(a.model.X.size())) * 1e-4;
+  std::vector<double> uu(u.data(), u.data() + u.size()), strain(3 * a.model.num_elements()),
+      stress(3 * a.model.num_elements()), f(a.model.X.size());
+  compute_internal_force(a.model, a.coloring, uu, strain, stress, f);
+  const Eigen::VectorXd ku = k * u;
+  for (Eigen::Index i = 0; i < u.size(); ++i) EXPECT_NEAR(f[i], ku(i), 1e-9 * ku.cwiseAbs().maxCoeff());
+  // Clapeyron: 1/2 u.K.u equals the summed element strain energy.
+  EXPECT_NEAR(strain_energy(a.model, strain, stress), 0.5 * u.dot(ku), 1e-10 * 0.5 * u.dot(ku));
+}
+
+TEST(Assembly, BitwiseIdenticalForOneAndTwoThreads) {
+  std::vector<double> one, two, f_one, f_two;
+  const std::string fine = std::string(kRectangle) + "\n";
+  auto run = [&](int threads, std::vector<double>& values, std::vector<double>& f) {
+    tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
+    test::TempDir dir;
+    const Scene scene = test::scene_from_text(fine, dir.path(), {"mesh.element_size=0.02"});
+    Model model = build_scene_model(scene);
+    std::vector<std::int32_t> equation(model.X.size());
+    for (std::size_t d = 0; d < equation.size(); ++d) equation[d] = static_cast<std::int32_t>(d);
+    const ElementColoring coloring = color_elements(model.conn, model.num_nodes());
+    const StiffnessLayout layout = build_stiffness_layout(model.conn, model.num_nodes(), equation);
+    values.assign(static_cast<std::size_t>(layout.pattern.nnz()), 0.0);
+    assemble_stiffness(model, coloring, layout, equation, 3.0, values);
+    std::vector<double> u(model.X.size()), strain(3 * model.num_elements()), stress(strain.size());
+    for (std::size_t d = 0; d < u.size(); ++d) u[d] = 1e-5 * std::sin(0.37 * static_cast<double>(d));
+    f.assign(model.X.size(), 0.0);
+    compute_internal_force(model, coloring, u, strain, stress, f);
+  };
+  run(1, one, f_one);
+  run(2, two, f_two);
+  ASSERT_EQ(one.size(), two.size());
+  EXPECT_GT(one.size(), 10000u);
+  EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)), 0);
+  EXPECT_EQ(std::memcmp(f_one.data(), f_two.data(), f_one.size() * sizeof(double)), 0);
+}
+
+}  // namespace
+}  // namespace rockdd

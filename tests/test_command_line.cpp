@@ -1,0 +1,153 @@
+// The rockdd command line as users and their scripts see it: exit codes, messages, files.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+#include <regex>
+
+#include "test_support.hpp"
+
+namespace rockdd {
+namespace {
+
+struct Invocation {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+Invocation rockdd_cli(const std::string& args, const std::filesystem::path& cwd) {
+  const std::string command = "cd '" + cwd.string() + "' && '" + ROCKDD_BINARY + "' " + args + " 2>&1";
+  Invocation inv;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) inv.output += buffer.data();
+  const int status = pclose(pipe);
+  inv.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return inv;
+}
+
+const std::filesystem::path kSource = ROCKDD_SOURCE_DIR;
+
+TEST(CommandLine, RunWritesEveryPromisedOutput) {
+  test::TempDir tmp;
+  const auto inv = rockdd_cli("run '" + (kSource / "data/cantilever_model_2.toml").string() +
+                                  "' --out out --threads 2 --set output.every=1 --set time.steps=2",
+                              tmp.path());
+  ASSERT_EQ(inv.exit_code, 0) << inv.output;
+  const auto dir = tmp.path() / "out" / "cantilever-model-2";
+  const auto summary = nlohmann::json::parse(test::read_text(dir / "summary.json"));
+  for (const char* key : {"status", "rockdd_version", "threads", "wall_seconds", "steps", "redone_steps",
+                          "open_close_iterations", "max_open_close_per_step", "damage_iterations",
+                          "elements", "nodes", "blocks", "damaged_elements", "peaks", "defaults",
+                          "timers", "solver"})
+    EXPECT_TRUE(summary.contains(key)) << key;
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_EQ(summary["threads"], 2);
+  EXPECT_EQ(summary["steps"], 2);
+  EXPECT_EQ(summary["elements"], 128);
+  EXPECT_EQ(summary["solver"]["analyses"], 1);
+  EXPECT_EQ(summary["solver"]["factorizations"], 1);  // static: K factorized once, reused
+  for (const char* timer : {"assembly", "factorization", "solve", "contact", "damage", "output"})
+    EXPECT_TRUE(summary["timers"].contains(timer)) << timer;
+  EXPECT_TRUE(summary["peaks"].contains("tip.uy"));
+
+  const std::string history = test::read_text(dir / "history.csv");
+  EXPECT_EQ(history.substr(0, history.find('\n')),
+            "step,time,dt,tip.ux,tip.uy,support.fx,support.fy,energy.kinetic,energy.strain,"
+            "energy.external_work,energy.dissipated");
+  EXPECT_EQ(std::count(history.begin(), history.end(), '\n'), 4);  // header + steps 0, 1, 2
+  for (const char* frame : {"frame_00000.vtu", "frame_00001.vtu", "frame_00002.vtu"})
+    EXPECT_TRUE(std::filesystem::exists(dir / "frames" / frame)) << frame;
+  const std::string pvd = test::read_text(dir / "frames.pvd");
+  EXPECT_NE(pvd.find("file=\"frames/frame_00002.vtu\""), std::string::npos) << pvd;
+  EXPECT_TRUE(std::filesystem::exists(dir / "profiles" / "midline_000002.csv"));
+  const std::string profile = test::read_text(dir / "profiles" / "midline_000002.csv");
+  EXPECT_EQ(profile.substr(0, profile.find('\n')), "s,x,y,ux,uy,sxx");
+  // No temporary file is left behind.
+  for (const auto& f : std::filesystem::recursive_directory_iterator(dir))
+    EXPECT_EQ(f.path().filename().string().find(".tmp"), std::string::npos) << f.path();
+}
+
+TEST(CommandLine, ResultsDoNotDependOnTheThreadCount) {
+  test::TempDir tmp;
+  const std::string scene = (kSource / "data/brazilian_disk_elastic.toml").string();
+  ASSERT_EQ(rockdd_cli("run '" + scene + "' --quiet --threads 1 --out one", tmp.path()).exit_code, 0);
+  ASSERT_EQ(rockdd_cli("run '" + scene + "' --quiet --threads 2 --out two", tmp.path()).exit_code, 0);
+  for (const char* file : {"history.csv", "profiles/diameter_000001.csv", "frames/frame_00001.vtu"})
+    EXPECT_EQ(test::read_text(tmp.path() / "one/brazilian-disk-elastic" / file),
+              test::read_text(tmp.path() / "two/brazilian-disk-elastic" / file))
+        << file;
+}
+
+TEST(CommandLine, CheckPrintsCountsAndDefaultsWithoutSolving) {
+  test::TempDir tmp;
+  const auto inv = rockdd_cli("check '" + (kSource / "data/cantilever_model_1.toml").string() + "'", tmp.path());
+  ASSERT_EQ(inv.exit_code, 0) << inv.output;
+  EXPECT_NE(inv.output.find("elements: 32"), std::string::npos) << inv.output;
+  EXPECT_NE(inv.output.find("blocks: 1"), std::string::npos) << inv.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out"));
+}
+
+TEST(CommandLine, EveryMalformedSceneExitsTwoNamingFileAndKeyAndWritesNothing) {
+  // tests/scenes/bad/CASES.md lists each case with the key its message must name.
+  const auto bad = kSource / "tests/scenes/bad";
+  const std::string cases = test::read_text(bad / "CASES.md");
+  const std::regex row(R"(\|\s*`?([A-Za-z0-9_\-]+\.toml)`?\s*\|\s*`([^`]+)`)");
+  int checked = 0;
+  for (auto it = std::sregex_iterator(cases.begin(), cases.end(), row); it != std::sregex_iterator(); ++it) {
+    const std::string file = (*it)[1], key = (*it)[2];
+    test::TempDir tmp;
+    const auto inv = rockdd_cli("run '" + (bad / file).string() + "' --out out", tmp.path());
+    EXPECT_EQ(inv.exit_code, 2) << file << ": " << inv.output;
+    EXPECT_NE(inv.output.find(file), std::string::npos) << file << ": " << inv.output;
+    EXPECT_NE(inv.output.find(key), std::string::npos) << file << " should name " << key << ": " << inv.output;
+    EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out")) << file << " wrote outputs";
+    ++checked;
+  }
+  EXPECT_GE(checked, 15);
+}
+
+TEST(CommandLine, UsageErrorsExitTwo) {
+  test::TempDir tmp;
+  EXPECT_EQ(rockdd_cli("", tmp.path()).exit_code, 2);
+  EXPECT_EQ(rockdd_cli("frobnicate x.toml", tmp.path()).exit_code, 2);
+  EXPECT_EQ(rockdd_cli("run", tmp.path()).exit_code, 2);
+  EXPECT_EQ(rockdd_cli("run a.toml --threads 0", tmp.path()).exit_code, 2);
+  EXPECT_EQ(rockdd_cli("run a.toml --bogus", tmp.path()).exit_code, 2);
+  const auto missing = rockdd_cli("run does_not_exist.toml", tmp.path());
+  EXPECT_EQ(missing.exit_code, 2);
+  EXPECT_NE(missing.output.find("does_not_exist.toml"), std::string::npos) << missing.output;
+  EXPECT_EQ(rockdd_cli("--version", tmp.path()).exit_code, 0);
+}
+
+TEST(CommandLine, FeaturesOfLaterStagesAreRejectedClearly) {
+  test::TempDir tmp;
+  const std::string scene = (kSource / "data/cantilever_model_1.toml").string();
+  const auto damage = rockdd_cli("run '" + scene + "' --set material.0.tensile_strength=2e6", tmp.path());
+  EXPECT_EQ(damage.exit_code, 2);
+  EXPECT_NE(damage.output.find("material[0].tensile_strength"), std::string::npos) << damage.output;
+  EXPECT_NE(damage.output.find("not supported yet"), std::string::npos) << damage.output;
+  const auto mc = rockdd_cli("mc '" + scene + "' --realizations 3", tmp.path());
+  EXPECT_EQ(mc.exit_code, 2);
+  EXPECT_NE(mc.output.find("not supported yet"), std::string::npos) << mc.output;
+}
+
+TEST(CommandLine, NumericalFailureExitsOneWithTheReason) {
+  // A displacement limit that no step can meet halves dt until it falls below dt_min.
+  test::TempDir tmp;
+  const auto inv = rockdd_cli(
+      "run '" + (kSource / "data/cantilever_model_1.toml").string() +
+          "' --out out --set scene.analysis='\"quasi-static\"' --set time.dt=1.0 --set time.steps=2"
+          " --set time.max_step_displacement=1e-12 --set time.dt_min=1e-3",
+      tmp.path());
+  EXPECT_EQ(inv.exit_code, 1) << inv.output;
+  EXPECT_NE(inv.output.find("max_step_displacement"), std::string::npos) << inv.output;
+  EXPECT_NE(inv.output.find("dt_min"), std::string::npos) << inv.output;
+  const auto summary = nlohmann::json::parse(test::read_text(tmp.path() / "out/cantilever-model-1/summary.json"));
+  EXPECT_EQ(summary["status"], "failed");
+  EXPECT_TRUE(summary.contains("reason"));
+}
+
+}  // namespace
+}  // namespace rockdd

@@ -1,0 +1,73 @@
+#pragma once
+// Helpers shared by the engine tests: scenes from TOML text, temporary folders, CSV reading.
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "engine/rockdd.hpp"
+#include "engine/scene/scene_reader.hpp"
+#include "engine/supported_features.hpp"
+
+namespace rockdd::test {
+
+/// A fresh folder under the system temp dir, removed at destruction.
+class TempDir {
+ public:
+  TempDir() {
+    std::random_device rd;
+    path_ = std::filesystem::temp_directory_path() /
+            ("rockdd-test-" + std::to_string(rd()) + std::to_string(rd()));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() { std::filesystem::remove_all(path_); }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// A scene from TOML text, as if read from `dir/scene.toml` (written there too).
+inline Scene scene_from_text(const std::string& text, const std::filesystem::path& dir,
+                             const std::vector<std::string>& overrides = {}) {
+  const auto file = dir / "scene.toml";
+  std::ofstream(file) << text;
+  Scene scene = read_scene(file, overrides);
+  check_supported_features(scene);
+  return scene;
+}
+
+/// A scene file from data/.
+inline std::filesystem::path data_file(const std::string& name) {
+  return std::filesystem::path(ROCKDD_SOURCE_DIR) / "data" / name;
+}
+
+/// A CSV file as named columns of numbers.
+inline std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string cell; std::getline(header, cell, ',');) names.push_back(cell);
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::size_t i = 0;
+    for (std::string cell; std::getline(row, cell, ',') && i < names.size(); ++i)
+      columns[names[i]].push_back(std::stod(cell));
+  }
+  return columns;
+}
+
+/// The whole content of a file.
+inline std::string read_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+}  // namespace rockdd::test
