@@ -1,1 +1,124 @@
-// (being written)
+#include <gmsh.h>
+
+#include <exception>
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <utility>
+
+#include "engine/errors.hpp"
+#include "engine/mesh/builtin_shapes.hpp"
+#include "engine/mesh/finish_mesh.hpp"
+#include "engine/mesh/gmsh_model_reader.hpp"
+#include "engine/mesh/gmsh_session.hpp"
+#include "engine/mesh/mesh.hpp"
+#include "engine/mesh/validate_mesh.hpp"
+
+namespace rockdd {
+
+namespace {
+
+std::string scene_key(MeshSpec::Kind kind) {
+  switch (kind) {
+    case MeshSpec::Kind::geo:
+      return "mesh.geo";
+    case MeshSpec::Kind::msh:
+      return "mesh.msh";
+    case MeshSpec::Kind::rectangle:
+    case MeshSpec::Kind::disk:
+      return "mesh.shape";
+  }
+  return "mesh";
+}
+
+/// Gmsh's own words for the exception in flight (Gmsh throws std::string or std::exception).
+std::string gmsh_message() {
+  try {
+    throw;
+  } catch (const std::string& text) {
+    return text;
+  } catch (const std::exception& error) {
+    return error.what();
+  } catch (...) {
+  }
+  return "unknown Gmsh error";
+}
+
+/// Runs a step of Gmsh API calls, turning Gmsh's own errors into InputError "<doing>: <message>".
+template <class Step>
+void gmsh_step(const MeshSource& source, const std::string& doing, Step&& step) {
+  try {
+    step();
+  } catch (const InputError&) {
+    throw;
+  } catch (...) {
+    source.fail(doing + ": " + gmsh_message());
+  }
+}
+
+void require_file(const std::filesystem::path& file, const MeshSource& source) {
+  std::error_code error;
+  if (!std::filesystem::is_regular_file(file, error))
+    source.fail("file not found: " + file.string());
+}
+
+/// Runs a Gmsh step that may fail inside Gmsh's parser or mesher; fails with "<doing>: <error>",
+/// naming `file` when Gmsh's message does not.
+void checked_gmsh_step(const MeshSource& source, const std::string& doing,
+                       const std::function<void()>& step, const std::filesystem::path& file = {}) {
+  std::string error = first_gmsh_error(step);
+  if (error.empty()) return;
+  if (!file.empty() && error.find(file.filename().string()) == std::string::npos)
+    error += " (in " + file.string() + ")";
+  source.fail(doing + ": " + error);
+}
+
+/// Fills the current Gmsh model with the 2D mesh `spec` describes.
+void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
+  auto open = [&] {
+    require_file(spec.file, source);
+    checked_gmsh_step(
+        source, "Gmsh could not read the file", [&] { gmsh::open(spec.file.string()); }, spec.file);
+  };
+  auto generate = [&](const std::string& what) {
+    checked_gmsh_step(
+        source, "Gmsh could not mesh " + what, [] { gmsh::model::mesh::generate(2); },
+        spec.kind == MeshSpec::Kind::geo ? spec.file : std::filesystem::path{});
+  };
+  switch (spec.kind) {
+    case MeshSpec::Kind::geo:
+      open();
+      // Set after reading so that it overrides the file's own Mesh.MeshSizeMax.
+      if (spec.element_size) gmsh::option::setNumber("Mesh.MeshSizeMax", *spec.element_size);
+      generate("the file");
+      return;
+    case MeshSpec::Kind::msh:
+      open();
+      return;
+    case MeshSpec::Kind::rectangle:
+      gmsh_step(source, "Gmsh could not draw the rectangle", [&] { add_rectangle(spec, source); });
+      generate("the rectangle");
+      return;
+    case MeshSpec::Kind::disk:
+      gmsh_step(source, "Gmsh could not draw the disk", [&] { add_disk(spec, source); });
+      generate("the disk");
+      return;
+  }
+}
+
+}  // namespace
+
+Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file) {
+  const MeshSource source{scene_file.string(), scene_key(spec.kind)};
+  TaggedMesh raw;
+  {
+    GmshSession session;
+    make_gmsh_mesh(spec, source);
+    gmsh_step(source, "Gmsh could not give its mesh", [&] { raw = read_gmsh_model(source); });
+  }
+  TaggedMesh mesh = finish_mesh(raw, source);
+  validate_mesh(mesh.mesh, source, mesh.element_tags);
+  return std::move(mesh.mesh);
+}
+
+}  // namespace rockdd

@@ -12,7 +12,10 @@
 namespace rockdd {
 
 /// Nodes, counter-clockwise triangles, and the physical names a scene refers to.
-/// Only nodes used by at least one triangle are kept, numbered 0..n-1 without gaps.
+/// Only nodes used by at least one triangle are kept, numbered 0..n-1 without gaps
+/// (build_mesh numbers them by reverse Cuthill–McKee and sorts elements by their lowest node).
+/// Curve edges run along triangle sides, a boundary edge counter-clockwise around its triangle
+/// (material on its left); point node lists are sorted.
 struct Mesh {
   std::vector<double> xy;                          // 2 per node
   std::vector<std::int32_t> triangles;             // 3 per element, counter-clockwise
@@ -28,7 +31,9 @@ struct Mesh {
 /// `scene_file` names the scene in error messages. Throws InputError on bad input.
 Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file);
 
-/// Checks triangles (zero or inverted area, bad node ids) and names; throws InputError.
+/// Checks triangles (zero or inverted area, bad node ids, duplicates, unused nodes, none at
+/// all) and names; throws InputError(source, "", message) naming elements by their index.
+/// build_mesh runs the same checks, naming elements by their Gmsh tags.
 void validate_mesh(const Mesh& mesh, const std::string& source);
 
 }  // namespace rockdd

@@ -1,0 +1,31 @@
+#pragma once
+// Exclusive use of the process-wide Gmsh library, which is neither thread-safe nor re-entrant.
+#include <functional>
+#include <mutex>
+#include <string>
+
+namespace rockdd {
+
+/// Holds Gmsh for one mesh: initializes it once per process, quiets it, restores the options
+/// a previous .geo file may have changed, and clears the model when it goes out of scope.
+/// Gmsh sets the process's OpenMP thread count (to 1) whenever it sets General.NumThreads,
+/// at initialization too; the count the process had is restored on the way out.
+class GmshSession {
+ public:
+  GmshSession();
+  ~GmshSession();
+  GmshSession(const GmshSession&) = delete;
+  GmshSession& operator=(const GmshSession&) = delete;
+
+ private:
+  std::unique_lock<std::mutex> lock_;  // first member: released after the model is cleared
+  int openmp_threads_ = 1;             // omp_get_max_threads() before Gmsh ran
+};
+
+/// Runs `step` (which calls Gmsh) with Gmsh's errors logged rather than thrown, and returns the
+/// first error's text, "" if none. A throw inside Gmsh's OpenMP meshing loops aborts the
+/// process, and one out of its .geo parser leaves the parser unusable for later files.
+/// Call with a GmshSession held.
+std::string first_gmsh_error(const std::function<void()>& step);
+
+}  // namespace rockdd

@@ -1,0 +1,21 @@
+#pragma once
+// How mesh problems are worded: the scene file and key they belong to, and points as text.
+#include <string>
+
+namespace rockdd {
+
+/// Where a mesh comes from, for error messages: the scene file and its key ("mesh.geo").
+struct MeshSource {
+  std::string where;
+  std::string key;
+  /// Throws InputError(where, key, message).
+  [[noreturn]] void fail(const std::string& message) const;
+};
+
+/// The shortest decimal form of `value` that reads back to the same double.
+std::string number_text(double value);
+
+/// "(x,y)" in number_text form.
+std::string point_text(double x, double y);
+
+}  // namespace rockdd

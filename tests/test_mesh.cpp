@@ -1,0 +1,537 @@
+// Meshing through Gmsh: built-in shapes, .geo and .msh files, post-processing and validation.
+#include <gtest/gtest.h>
+#include <omp.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <numeric>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "engine/errors.hpp"
+#include "engine/mesh/mesh.hpp"
+#include "engine/mesh/node_ordering.hpp"
+
+namespace rockdd {
+namespace {
+
+const std::filesystem::path kScene = "scene.toml";
+const std::filesystem::path kMeshes = std::filesystem::path(ROCKDD_SOURCE_DIR) / "tests/meshes";
+
+MeshSpec rectangle(Vec2 size, Vec2 origin, std::array<int, 2> divisions) {
+  MeshSpec spec;
+  spec.kind = MeshSpec::Kind::rectangle;
+  spec.size = size;
+  spec.origin = origin;
+  spec.divisions = divisions;
+  return spec;
+}
+
+MeshSpec disk(double radius, Vec2 centre, double alpha_deg, double element_size) {
+  MeshSpec spec;
+  spec.kind = MeshSpec::Kind::disk;
+  spec.radius = radius;
+  spec.origin = centre;
+  spec.flat_half_angle_deg = alpha_deg;
+  spec.element_size = element_size;
+  return spec;
+}
+
+MeshSpec file(MeshSpec::Kind kind, const std::string& name) {
+  MeshSpec spec;
+  spec.kind = kind;
+  spec.file = kMeshes / name;
+  return spec;
+}
+
+Vec2 node(const Mesh& mesh, std::int32_t n) {
+  return {mesh.xy[2 * n], mesh.xy[2 * n + 1]};
+}
+
+/// Signed area of element e: ((b - a) x (c - a)) / 2, positive when counter-clockwise.
+double signed_area(const Mesh& mesh, std::size_t e) {
+  const Vec2 a = node(mesh, mesh.triangles[3 * e]), b = node(mesh, mesh.triangles[3 * e + 1]),
+             c = node(mesh, mesh.triangles[3 * e + 2]);
+  return 0.5 * ((b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]));
+}
+
+double total_area(const Mesh& mesh) {
+  double sum = 0.0;
+  for (std::size_t e = 0; e < mesh.num_elements(); ++e) sum += signed_area(mesh, e);
+  return sum;
+}
+
+double edge_length(const Mesh& mesh, const std::array<std::int32_t, 2>& edge) {
+  const Vec2 a = node(mesh, edge[0]), b = node(mesh, edge[1]);
+  return std::hypot(b[0] - a[0], b[1] - a[1]);
+}
+
+double curve_length(const Mesh& mesh, const std::string& name) {
+  double sum = 0.0;
+  for (const auto& edge : mesh.curves.at(name)) sum += edge_length(mesh, edge);
+  return sum;
+}
+
+double longest_edge(const Mesh& mesh) {
+  double longest = 0.0;
+  for (std::size_t e = 0; e < mesh.num_elements(); ++e)
+    for (int k = 0; k < 3; ++k)
+      longest = std::max(longest, edge_length(mesh, {mesh.triangles[3 * e + k],
+                                                     mesh.triangles[3 * e + (k + 1) % 3]}));
+  return longest;
+}
+
+std::set<std::int32_t> curve_nodes(const Mesh& mesh, const std::string& name) {
+  std::set<std::int32_t> nodes;
+  for (const auto& edge : mesh.curves.at(name)) nodes.insert(edge.begin(), edge.end());
+  return nodes;
+}
+
+std::set<std::int32_t> nodes_of_surface(const Mesh& mesh, std::int32_t surface) {
+  std::set<std::int32_t> nodes;
+  for (std::size_t e = 0; e < mesh.num_elements(); ++e)
+    if (mesh.element_surface[e] == surface)
+      nodes.insert(&mesh.triangles[3 * e], &mesh.triangles[3 * e] + 3);
+  return nodes;
+}
+
+/// The single node of a physical point.
+Vec2 named_point(const Mesh& mesh, const std::string& name) {
+  const auto& nodes = mesh.points.at(name);
+  EXPECT_EQ(nodes.size(), 1u) << name;
+  return node(mesh, nodes.front());
+}
+
+/// Largest |i - j| over the nodes i, j of one element.
+std::int32_t bandwidth(const Mesh& mesh) {
+  std::int32_t width = 0;
+  for (std::size_t e = 0; e < mesh.num_elements(); ++e) {
+    const auto [lo, hi] = std::minmax_element(&mesh.triangles[3 * e], &mesh.triangles[3 * e] + 3);
+    width = std::max(width, *hi - *lo);
+  }
+  return width;
+}
+
+/// Runs build_mesh, expecting an InputError; returns it.
+InputError build_error(const MeshSpec& spec) {
+  try {
+    build_mesh(spec, kScene);
+  } catch (const InputError& error) {
+    return error;
+  }
+  ADD_FAILURE() << "no InputError for " << spec.file;
+  return InputError("", "", "");
+}
+
+/// Runs validate_mesh on a hand-built mesh, expecting an InputError; returns its message.
+std::string validation_error(const Mesh& mesh) {
+  try {
+    validate_mesh(mesh, "hand.msh");
+  } catch (const InputError& error) {
+    return error.expected();
+  }
+  ADD_FAILURE() << "no InputError";
+  return "";
+}
+
+/// Unit square split along its diagonal into two counter-clockwise triangles.
+Mesh two_triangle_square() {
+  Mesh mesh;
+  mesh.xy = {0, 0, 1, 0, 1, 1, 0, 1};
+  mesh.triangles = {0, 1, 2, 0, 2, 3};
+  mesh.element_surface = {0, 0};
+  mesh.surface_body = {"plate"};
+  mesh.curves["bottom"] = {{0, 1}};
+  mesh.points["corner"] = {0};
+  return mesh;
+}
+
+// --- Built-in rectangle ---------------------------------------------------------------------
+
+TEST(Rectangle, StructuredHasTwoTrianglesPerCell) {
+  // nx x ny cells: 2 nx ny triangles and (nx + 1)(ny + 1) nodes, exactly.
+  const Mesh mesh = build_mesh(rectangle({0.04, 0.01}, {0, 0}, {40, 10}), kScene);
+  EXPECT_EQ(mesh.num_elements(), 800u);
+  EXPECT_EQ(mesh.num_nodes(), 451u);
+  EXPECT_EQ(mesh.surface_body, std::vector<std::string>{"body"});
+  EXPECT_TRUE(std::all_of(mesh.element_surface.begin(), mesh.element_surface.end(),
+                          [](std::int32_t s) { return s == 0; }));
+}
+
+TEST(Rectangle, NamedCurvesCoverTheSides) {
+  // Each side has as many edges as cells along it; edge lengths sum to the side (1e-12 rel).
+  const double w = 0.04, h = 0.01, x0 = 0.1, y0 = -0.2;
+  const Mesh mesh = build_mesh(rectangle({w, h}, {x0, y0}, {40, 10}), kScene);
+  EXPECT_EQ(mesh.curves.at("bottom").size(), 40u);
+  EXPECT_EQ(mesh.curves.at("top").size(), 40u);
+  EXPECT_EQ(mesh.curves.at("left").size(), 10u);
+  EXPECT_EQ(mesh.curves.at("right").size(), 10u);
+  EXPECT_NEAR(curve_length(mesh, "bottom"), w, 1e-12 * w);
+  EXPECT_NEAR(curve_length(mesh, "top"), w, 1e-12 * w);
+  EXPECT_NEAR(curve_length(mesh, "left"), h, 1e-12 * h);
+  EXPECT_NEAR(curve_length(mesh, "right"), h, 1e-12 * h);
+  for (const std::int32_t n : curve_nodes(mesh, "bottom")) EXPECT_NEAR(node(mesh, n)[1], y0, 1e-15);
+  for (const std::int32_t n : curve_nodes(mesh, "top"))
+    EXPECT_NEAR(node(mesh, n)[1], y0 + h, 1e-15);
+  for (const std::int32_t n : curve_nodes(mesh, "left")) EXPECT_NEAR(node(mesh, n)[0], x0, 1e-15);
+  for (const std::int32_t n : curve_nodes(mesh, "right"))
+    EXPECT_NEAR(node(mesh, n)[0], x0 + w, 1e-15);
+  EXPECT_EQ(named_point(mesh, "bottom_left"), (Vec2{x0, y0}));
+  EXPECT_EQ(named_point(mesh, "bottom_right"), (Vec2{x0 + w, y0}));
+  EXPECT_EQ(named_point(mesh, "top_right"), (Vec2{x0 + w, y0 + h}));
+  EXPECT_EQ(named_point(mesh, "top_left"), (Vec2{x0, y0 + h}));
+}
+
+TEST(Rectangle, TrianglesAreCounterClockwiseAndTileTheArea) {
+  // Every signed area > 0; their sum is w h to 1e-12 relative.
+  const Mesh mesh = build_mesh(rectangle({0.04, 0.01}, {0.3, 0.7}, {40, 10}), kScene);
+  for (std::size_t e = 0; e < mesh.num_elements(); ++e) EXPECT_GT(signed_area(mesh, e), 0.0) << e;
+  EXPECT_NEAR(total_area(mesh), 0.04 * 0.01, 1e-12 * 0.04 * 0.01);
+}
+
+TEST(Rectangle, BoundaryEdgesRunCounterClockwise) {
+  // A boundary edge a -> b with the material on its left has outward normal (dy, -dx) / L.
+  const Mesh mesh = build_mesh(rectangle({2, 1}, {0, 0}, {4, 2}), kScene);
+  const std::map<std::string, Vec2> outward{
+      {"bottom", {0, -1}}, {"right", {1, 0}}, {"top", {0, 1}}, {"left", {-1, 0}}};
+  for (const auto& [name, normal] : outward)
+    for (const auto& edge : mesh.curves.at(name)) {
+      const Vec2 a = node(mesh, edge[0]), b = node(mesh, edge[1]);
+      const double length = edge_length(mesh, edge);
+      EXPECT_NEAR((b[1] - a[1]) / length, normal[0], 1e-12) << name;
+      EXPECT_NEAR(-(b[0] - a[0]) / length, normal[1], 1e-12) << name;
+    }
+}
+
+TEST(Rectangle, ElementSizeGivesAnUnstructuredMesh) {
+  // Frontal-Delaunay edges stay within 1.5 h of the target size h; the area is w h (1e-12 rel).
+  MeshSpec spec = rectangle({0.04, 0.01}, {0, 0}, {10, 10});
+  spec.element_size = 0.002;
+  const Mesh mesh = build_mesh(spec, kScene);
+  EXPECT_NE(mesh.num_elements(), 200u);  // not the 10 x 10 structured grid
+  EXPECT_LE(longest_edge(mesh), 1.5 * 0.002);
+  EXPECT_NEAR(total_area(mesh), 0.04 * 0.01, 1e-12 * 0.04 * 0.01);
+  EXPECT_NEAR(curve_length(mesh, "bottom"), 0.04, 1e-12 * 0.04);
+  EXPECT_NEAR(curve_length(mesh, "left"), 0.01, 1e-12 * 0.01);
+}
+
+// --- Node numbering -------------------------------------------------------------------------
+
+TEST(NodeOrdering, RectangleBandwidthIsNearTheGridWidth) {
+  // Numbering an nx x ny grid column by column across its short side gives bandwidth ny + 2;
+  // reverse Cuthill-McKee must stay within twice that (Gmsh's own order, boundary nodes
+  // first, gives 448 here).
+  const Mesh mesh = build_mesh(rectangle({0.04, 0.01}, {0, 0}, {40, 10}), kScene);
+  EXPECT_LE(bandwidth(mesh), 2 * (10 + 2));
+}
+
+TEST(NodeOrdering, ReverseCuthillMcKeeNumbersEveryPartOnce) {
+  // Two strips of 4 triangles (nodes interleaved between them): the result is a permutation,
+  // and each strip, a path of width 2, gets bandwidth 2.
+  const std::vector<std::int32_t> triangles{0, 2, 4, 2, 6, 4, 4, 6, 8, 6, 10, 8,
+                                            1, 3, 5, 3, 7, 5, 5, 7, 9, 7, 11, 9};
+  const std::vector<std::int32_t> number = reverse_cuthill_mckee(12, triangles);
+  std::vector<std::int32_t> sorted = number;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<std::int32_t> identity(12);
+  std::iota(identity.begin(), identity.end(), 0);
+  EXPECT_EQ(sorted, identity);
+  for (std::size_t e = 0; e < triangles.size(); e += 3) {
+    const std::int32_t a = number[triangles[e]], b = number[triangles[e + 1]],
+                       c = number[triangles[e + 2]];
+    EXPECT_LE(std::max({a, b, c}) - std::min({a, b, c}), 2);
+  }
+}
+
+// --- Built-in disk --------------------------------------------------------------------------
+
+/// Area of a disk cut by two chords at half-angle alpha about the vertical axis:
+/// pi R^2 - 2 R^2 (alpha - sin(alpha) cos(alpha)), each circular segment being
+/// R^2 (alpha - sin(alpha) cos(alpha)).
+double flattened_disk_area(double r, double alpha) {
+  return std::numbers::pi * r * r - 2.0 * r * r * (alpha - std::sin(alpha) * std::cos(alpha));
+}
+
+TEST(Disk, AreaAndCountMatchTheFlattenedDisk) {
+  // Area within 0.5% of the analytic area; a Frontal-Delaunay mesh of size h has about
+  // area / (sqrt(3)/4 h^2) triangles (equilateral), taken here within 15%.
+  const double r = 0.025, alpha = 10.0 * std::numbers::pi / 180.0, h = 5e-4;
+  const Mesh mesh = build_mesh(disk(r, {0, 0}, 10.0, h), kScene);
+  const double area = flattened_disk_area(r, alpha);
+  EXPECT_NEAR(total_area(mesh), area, 0.005 * area);
+  const double estimate = area / (std::sqrt(3.0) / 4.0 * h * h);
+  EXPECT_NEAR(static_cast<double>(mesh.num_elements()), estimate, 0.15 * estimate);
+  for (std::size_t e = 0; e < mesh.num_elements(); ++e) ASSERT_GT(signed_area(mesh, e), 0.0);
+}
+
+TEST(Disk, FlatsAndNamedPointsSitWhereTheGeometrySays) {
+  // Flats at y = cy ± R cos(alpha), |x - cx| <= R sin(alpha), length 2 R sin(alpha); rim nodes
+  // at distance R; named points exact. Tolerance 1e-12 R (Gmsh's rounding), 1e-9 rel for
+  // lengths.
+  const double r = 0.025, alpha = 10.0 * std::numbers::pi / 180.0, cx = 0.1, cy = -0.05;
+  const Mesh mesh = build_mesh(disk(r, {cx, cy}, 10.0, 1e-3), kScene);
+  const double tol = 1e-12 * r, flat_y = r * std::cos(alpha), half_width = r * std::sin(alpha);
+  for (const auto& [name, y] : {std::pair{"top_flat", cy + flat_y}, {"bottom_flat", cy - flat_y}}) {
+    for (const std::int32_t n : curve_nodes(mesh, name)) {
+      EXPECT_NEAR(node(mesh, n)[1], y, tol) << name;
+      EXPECT_LE(std::abs(node(mesh, n)[0] - cx), half_width + tol) << name;
+    }
+    EXPECT_NEAR(curve_length(mesh, name), 2.0 * half_width, 1e-9 * half_width) << name;
+  }
+  for (const std::int32_t n : curve_nodes(mesh, "rim"))
+    EXPECT_NEAR(std::hypot(node(mesh, n)[0] - cx, node(mesh, n)[1] - cy), r, tol);
+  const std::map<std::string, Vec2> expected{{"center", {cx, cy}},
+                                             {"top", {cx, cy + flat_y}},
+                                             {"bottom", {cx, cy - flat_y}},
+                                             {"left", {cx - r, cy}},
+                                             {"right", {cx + r, cy}}};
+  for (const auto& [name, at] : expected) {
+    const Vec2 p = named_point(mesh, name);
+    EXPECT_NEAR(p[0], at[0], tol) << name;
+    EXPECT_NEAR(p[1], at[1], tol) << name;
+  }
+}
+
+TEST(Disk, ZeroAngleIsARoundDisk) {
+  // alpha = 0: no flats, area pi R^2 within 0.5%, top and bottom at (0, ±R) on the rim.
+  const double r = 0.025;
+  const Mesh mesh = build_mesh(disk(r, {0, 0}, 0.0, 1e-3), kScene);
+  EXPECT_EQ(mesh.curves.count("top_flat"), 0u);
+  EXPECT_EQ(mesh.curves.count("bottom_flat"), 0u);
+  EXPECT_NEAR(total_area(mesh), std::numbers::pi * r * r, 0.005 * std::numbers::pi * r * r);
+  EXPECT_NEAR(named_point(mesh, "top")[1], r, 1e-12 * r);
+  EXPECT_NEAR(named_point(mesh, "bottom")[1], -r, 1e-12 * r);
+  const std::set<std::int32_t> rim = curve_nodes(mesh, "rim");
+  EXPECT_TRUE(rim.count(mesh.points.at("top").front()));
+  EXPECT_TRUE(rim.count(mesh.points.at("left").front()));
+}
+
+TEST(Disk, MeshIsNearlyMirrorSymmetric) {
+  // The rim's nodes mirror (x -> -x) onto rim nodes within 1e-6 h; the triangles left and
+  // right of the vertical axis differ in number by under 2%.
+  const double h = 1e-3;
+  const Mesh mesh = build_mesh(disk(0.025, {0, 0}, 10.0, h), kScene);
+  std::vector<Vec2> rim;
+  for (const std::int32_t n : curve_nodes(mesh, "rim")) rim.push_back(node(mesh, n));
+  for (const Vec2& p : rim) {
+    double nearest = INFINITY;
+    for (const Vec2& q : rim) nearest = std::min(nearest, std::hypot(q[0] + p[0], q[1] - p[1]));
+    EXPECT_LT(nearest, 1e-6 * h);
+  }
+  int left = 0, right = 0;
+  for (std::size_t e = 0; e < mesh.num_elements(); ++e) {
+    double x = 0.0;
+    for (int k = 0; k < 3; ++k) x += node(mesh, mesh.triangles[3 * e + k])[0];
+    (x < 0.0 ? left : right) += 1;
+  }
+  EXPECT_NEAR(left, right, 0.02 * (left + right) / 2.0);
+}
+
+TEST(Disk, BadParametersNameTheirKey) {
+  EXPECT_EQ(build_error(disk(0.025, {0, 0}, 90.0, 1e-3)).key(), "mesh.flat_half_angle_deg");
+  EXPECT_EQ(build_error(disk(-1.0, {0, 0}, 10.0, 1e-3)).key(), "mesh.radius");
+  MeshSpec no_size = disk(0.025, {0, 0}, 10.0, 1e-3);
+  no_size.element_size.reset();
+  EXPECT_EQ(build_error(no_size).key(), "mesh.element_size");
+  EXPECT_EQ(build_error(disk(0.025, {0, 0}, 10.0, 1e-7)).key(), "mesh.element_size");
+}
+
+// --- .geo files -----------------------------------------------------------------------------
+
+TEST(GeoFile, SeparateSurfacesShareNoNode) {
+  // Two squares touching along x = 1 but meshed separately: disjoint node sets, each face's
+  // nodes at x = 1 on both sides. The right square's curve loop runs clockwise, so Gmsh gives
+  // clockwise triangles there: build_mesh must turn them (every signed area > 0, sum 2).
+  const Mesh mesh = build_mesh(file(MeshSpec::Kind::geo, "two_blocks.geo"), kScene);
+  ASSERT_EQ(mesh.surface_body, (std::vector<std::string>{"left_block", "right_block"}));
+  const std::set<std::int32_t> a = nodes_of_surface(mesh, 0), b = nodes_of_surface(mesh, 1);
+  std::vector<std::int32_t> common;
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(common));
+  EXPECT_TRUE(common.empty());
+  EXPECT_EQ(a.size() + b.size(), mesh.num_nodes());
+  for (const char* face : {"left_face", "right_face"})
+    for (const std::int32_t n : curve_nodes(mesh, face)) EXPECT_EQ(node(mesh, n)[0], 1.0);
+  for (std::size_t e = 0; e < mesh.num_elements(); ++e) EXPECT_GT(signed_area(mesh, e), 0.0);
+  EXPECT_NEAR(total_area(mesh), 2.0, 1e-12 * 2.0);
+}
+
+TEST(GeoFile, ConformalSurfacesShareTheirCurve) {
+  // Two squares sharing the curve x = 1: the nodes they share are exactly the curve's nodes,
+  // and each curve edge is a side of one triangle on each side. The unnamed surface is "".
+  const Mesh mesh = build_mesh(file(MeshSpec::Kind::geo, "conformal.geo"), kScene);
+  ASSERT_EQ(mesh.surface_body, (std::vector<std::string>{"left_half", ""}));
+  const std::set<std::int32_t> a = nodes_of_surface(mesh, 0), b = nodes_of_surface(mesh, 1);
+  std::set<std::int32_t> common;
+  std::set_intersection(a.begin(), a.end(), b.begin(), b.end(),
+                        std::inserter(common, common.begin()));
+  EXPECT_EQ(common, curve_nodes(mesh, "interface"));
+  for (const auto& edge : mesh.curves.at("interface")) {
+    int sides = 0;
+    for (std::size_t e = 0; e < mesh.num_elements(); ++e) {
+      const std::set<std::int32_t> t(&mesh.triangles[3 * e], &mesh.triangles[3 * e] + 3);
+      sides += t.count(edge[0]) && t.count(edge[1]);
+    }
+    EXPECT_EQ(sides, 2);
+  }
+}
+
+TEST(GeoFile, ElementSizeCapsTheFileSize) {
+  // The file asks for 0.5; element_size = 0.1 caps it: edges within 1.5 x 0.1, area still 2.
+  MeshSpec spec = file(MeshSpec::Kind::geo, "conformal.geo");
+  const std::size_t coarse = build_mesh(spec, kScene).num_elements();
+  spec.element_size = 0.1;
+  const Mesh fine = build_mesh(spec, kScene);
+  EXPECT_GT(fine.num_elements(), 5 * coarse);
+  EXPECT_LE(longest_edge(fine), 1.5 * 0.1);
+  EXPECT_NEAR(total_area(fine), 2.0, 1e-12 * 2.0);
+}
+
+// --- .msh files -----------------------------------------------------------------------------
+
+TEST(MshFile, Formats41And22ReadTheSame) {
+  // square.geo written by Gmsh in both formats: 8 triangles, 9 nodes, same everything.
+  const Mesh v41 = build_mesh(file(MeshSpec::Kind::msh, "square_41.msh"), kScene);
+  const Mesh v22 = build_mesh(file(MeshSpec::Kind::msh, "square_22.msh"), kScene);
+  EXPECT_EQ(v41.num_elements(), 8u);
+  EXPECT_EQ(v41.num_nodes(), 9u);
+  EXPECT_EQ(v41.xy, v22.xy);
+  EXPECT_EQ(v41.triangles, v22.triangles);
+  EXPECT_EQ(v41.element_surface, v22.element_surface);
+  EXPECT_EQ(v41.surface_body, v22.surface_body);
+  EXPECT_EQ(v41.curves, v22.curves);
+  EXPECT_EQ(v41.points, v22.points);
+  EXPECT_EQ(v41.surface_body, std::vector<std::string>{"plate"});
+  EXPECT_EQ(v41.curves.at("bottom").size(), 2u);
+  EXPECT_EQ(named_point(v41, "origin"), (Vec2{0, 0}));
+  EXPECT_NEAR(total_area(v41), 1.0, 1e-12);
+}
+
+// --- Bad input ------------------------------------------------------------------------------
+
+TEST(BadInput, MissingFile) {
+  const InputError error = build_error(file(MeshSpec::Kind::msh, "missing.msh"));
+  EXPECT_EQ(error.where(), kScene.string());
+  EXPECT_EQ(error.key(), "mesh.msh");
+  EXPECT_EQ(error.expected(), "file not found: " + (kMeshes / "missing.msh").string());
+}
+
+TEST(BadInput, QuadrilateralElement) {
+  const InputError error = build_error(file(MeshSpec::Kind::msh, "quad.msh"));
+  EXPECT_EQ(error.key(), "mesh.msh");
+  EXPECT_EQ(error.expected(), "unsupported element type 'Quadrilateral 4' (only 3-node triangles)");
+}
+
+TEST(BadInput, ZeroAreaTriangleIsNamedByItsGmshTag) {
+  const InputError error = build_error(file(MeshSpec::Kind::msh, "zero_area.msh"));
+  EXPECT_EQ(error.key(), "mesh.msh");
+  EXPECT_EQ(error.expected(), "element 3 has zero area (nodes at (0,0), (1,0), (2,0))");
+}
+
+TEST(BadInput, GeoSyntaxErrorLeavesGmshUsable) {
+  const InputError error = build_error(file(MeshSpec::Kind::geo, "syntax_error.geo"));
+  EXPECT_EQ(error.key(), "mesh.geo");
+  EXPECT_EQ(error.expected().rfind("Gmsh could not read the file: ", 0), 0u) << error.what();
+  EXPECT_NE(error.expected().find("line 3: syntax error"), std::string::npos) << error.what();
+  // Gmsh's parser must read the next file normally.
+  EXPECT_EQ(build_mesh(file(MeshSpec::Kind::geo, "square.geo"), kScene).num_elements(), 8u);
+}
+
+TEST(BadInput, UnreadableMshNamesTheFile) {
+  // Gmsh's message ("Could not read nodes") does not name the file, so build_mesh adds it.
+  const InputError error = build_error(file(MeshSpec::Kind::msh, "truncated.msh"));
+  EXPECT_EQ(error.key(), "mesh.msh");
+  EXPECT_EQ(error.expected().rfind("Gmsh could not read the file: ", 0), 0u) << error.what();
+  EXPECT_NE(error.expected().find((kMeshes / "truncated.msh").string()), std::string::npos)
+      << error.what();
+}
+
+TEST(BadInput, MeshingFailureIsAnInputErrorNotAnAbort) {
+  // Gmsh fails inside its OpenMP meshing loop on a self-crossing loop; a throw there would
+  // abort the process, so the error must come back as InputError and Gmsh stay usable.
+  const InputError error = build_error(file(MeshSpec::Kind::geo, "unmeshable.geo"));
+  EXPECT_EQ(error.key(), "mesh.geo");
+  EXPECT_EQ(error.expected().rfind("Gmsh could not mesh the file: ", 0), 0u) << error.what();
+  EXPECT_EQ(build_mesh(file(MeshSpec::Kind::geo, "square.geo"), kScene).num_elements(), 8u);
+}
+
+TEST(BadInput, CurveOnNoTriangle) {
+  const InputError error = build_error(file(MeshSpec::Kind::geo, "stray_curve.geo"));
+  EXPECT_EQ(error.key(), "mesh.geo");
+  EXPECT_EQ(error.expected(), "physical curve 'stray' has nodes on no triangle (node at (2,0))");
+}
+
+TEST(BadInput, SecondOrderTrianglesAndNoLeakOfTheOption) {
+  const InputError error = build_error(file(MeshSpec::Kind::geo, "second_order.geo"));
+  EXPECT_EQ(error.expected(), "unsupported element type 'Triangle 6' (only 3-node triangles)");
+  // Mesh.ElementOrder = 2 in that file must not reach the next mesh.
+  EXPECT_EQ(build_mesh(file(MeshSpec::Kind::geo, "square.geo"), kScene).num_elements(), 8u);
+}
+
+// --- validate_mesh on hand-built meshes -----------------------------------------------------
+
+TEST(ValidateMesh, AcceptsAGoodMesh) {
+  EXPECT_NO_THROW(validate_mesh(two_triangle_square(), "x"));
+}
+
+TEST(ValidateMesh, RejectsEachDefect) {
+  Mesh empty;
+  EXPECT_EQ(validation_error(empty), "the mesh has no triangles");
+
+  Mesh degenerate = two_triangle_square();
+  degenerate.xy = {0, 0, 1, 0, 2, 0, 0, 1};  // element 0's nodes 0, 1, 2 on a line
+  EXPECT_EQ(validation_error(degenerate), "element 0 has zero area (nodes at (0,0), (1,0), (2,0))");
+
+  Mesh clockwise = two_triangle_square();
+  std::swap(clockwise.triangles[4], clockwise.triangles[5]);
+  EXPECT_EQ(validation_error(clockwise), "element 1 is clockwise (nodes at (0,0), (0,1), (1,1))");
+
+  Mesh out_of_range = two_triangle_square();
+  out_of_range.triangles[5] = 7;
+  EXPECT_EQ(validation_error(out_of_range), "element 1 refers to node 7, but the mesh has 4 nodes");
+
+  Mesh duplicate = two_triangle_square();
+  duplicate.triangles.insert(duplicate.triangles.end(), {2, 0, 1});
+  duplicate.element_surface.push_back(0);
+  EXPECT_EQ(validation_error(duplicate),
+            "element 0 and element 2 are the same triangle (nodes at (1,1), (0,0), (1,0))");
+
+  Mesh unused = two_triangle_square();
+  unused.xy.insert(unused.xy.end(), {5, 5});
+  EXPECT_EQ(validation_error(unused), "node 4 at (5,5) is on no triangle");
+
+  Mesh bad_curve = two_triangle_square();
+  bad_curve.curves["bottom"] = {{0, 9}};
+  EXPECT_EQ(validation_error(bad_curve),
+            "physical curve 'bottom' refers to node 9, but the mesh has 4 nodes");
+}
+
+// --- Threads --------------------------------------------------------------------------------
+
+TEST(Concurrency, ParallelCallsGiveTheSameMesh) {
+  // Gmsh is global: build_mesh serializes it, so two threads get the same result as one.
+  const MeshSpec spec = disk(0.025, {0, 0}, 10.0, 2e-3);
+  const Mesh reference = build_mesh(spec, kScene);
+  Mesh a, b;
+  std::thread first([&] { a = build_mesh(spec, kScene); });
+  std::thread second([&] { b = build_mesh(file(MeshSpec::Kind::geo, "conformal.geo"), kScene); });
+  first.join();
+  second.join();
+  EXPECT_EQ(a.triangles, reference.triangles);
+  EXPECT_EQ(a.xy, reference.xy);
+  EXPECT_EQ(b.surface_body, (std::vector<std::string>{"left_half", ""}));
+}
+
+TEST(Concurrency, OpenMpThreadCountSurvivesGmsh) {
+  // Gmsh calls omp_set_num_threads(1) when it initializes; build_mesh must undo it.
+  const int before = omp_get_max_threads();
+  omp_set_num_threads(3);
+  build_mesh(rectangle({1, 1}, {0, 0}, {2, 2}), kScene);
+  EXPECT_EQ(omp_get_max_threads(), 3);
+  omp_set_num_threads(before);
+}
+
+}  // namespace
+}  // namespace rockdd
