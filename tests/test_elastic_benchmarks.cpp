@@ -48,7 +48,9 @@ TEST(Cantilever, ModelsOneToFourConvergeMonotonicallyToTimoshenko) {
     previous_error = error;
     // The clamped edge carries the whole load: reaction = -(applied) = +10 kN upwards.
     EXPECT_NEAR(history.at("support.fy").back(), 1e4, 1e-6 * 1e4);
-    if (model == 4) EXPECT_LT(error, 0.02) << "tip " << tip << " theory " << exact;
+    if (model == 4) {
+      EXPECT_LT(error, 0.02) << "tip " << tip << " theory " << exact;
+    }
   }
 }
 
@@ -77,20 +79,29 @@ TEST(BrazilianDisk, ElasticStressesAlongTheDiameterMatchHuang2015) {
   std::filesystem::path profile;
   for (const auto& f : std::filesystem::directory_iterator(out.dir / "profiles")) profile = f.path();
   const auto p = test::read_csv(profile);
+  // Huang's eqs. (15)-(16) are an approximation: integrated over the loaded diameter their
+  // sigma_x leaves a net horizontal force of -1.76 % of P (it should be 0 by statics), and a
+  // 4x finer mesh (74k elements) converges to within 2 % (sigma_x) but to 4.5 % (sigma_y at
+  // 0.8 R) of them. So: sigma_x within 3 % of P/(pi t R) over the central 80 % of the
+  // diameter; sigma_y, whose gap to the formula is 2.4 % at the centre and grows towards the
+  // flats, within 4 % over the central 60 % and 7 % over the central 80 %.
   int compared = 0;
-  double worst_x = 0, worst_y = 0;
-  for (std::size_t i = 0; i < p.at("y").size(); ++i) {
-    const double y = p.at("y")[i];
-    if (std::abs(y) > 0.8 * R) continue;  // the central 80 % of the diameter
+  double worst_x = 0, worst_y_60 = 0, worst_y_80 = 0;
+  const auto& ys = p.at("y");
+  for (std::size_t i = 0; i < ys.size(); ++i) {
+    const double y = ys[i];
+    if (std::abs(y) > 0.8 * R) continue;
     double sx = 0, sy = 0;
     huang_stresses(y, P, R, a, t, sx, sy);
     worst_x = std::max(worst_x, std::abs(p.at("sxx")[i] - sx) / scale);
-    worst_y = std::max(worst_y, std::abs(p.at("syy")[i] - sy) / scale);
+    worst_y_80 = std::max(worst_y_80, std::abs(p.at("syy")[i] - sy) / scale);
+    if (std::abs(y) <= 0.6 * R) worst_y_60 = std::max(worst_y_60, std::abs(p.at("syy")[i] - sy) / scale);
     ++compared;
   }
   EXPECT_GE(compared, 75);
   EXPECT_LT(worst_x, 0.03);
-  EXPECT_LT(worst_y, 0.03);
+  EXPECT_LT(worst_y_60, 0.04);
+  EXPECT_LT(worst_y_80, 0.07);
   // At the centre eqs. (15)-(16) give sx = (3 cos a - 2a / sin a) P/(pi t R) ~ 0.944 (tension).
   double sx0 = 0, sy0 = 0;
   huang_stresses(0.0, P, R, a, t, sx0, sy0);

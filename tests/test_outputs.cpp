@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "engine/output/atomic_file.hpp"
-#include "engine/output/number_format.hpp"
+#include "engine/number_format.hpp"
 #include "engine/output/vtu_writer.hpp"
 
 namespace rockdd {

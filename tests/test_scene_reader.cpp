@@ -191,7 +191,8 @@ TEST(SceneReader, StaticSceneWithoutTimeRunsOneStepAndRecordsEveryDefault) {
       {"material[0].detach_at_damage", "0"},
       {"output.dir", "out"},
       {"output.every", "100"},
-      {"output.fields", R"(["displacement", "stress", "damage", "block"])"},
+      {"output.fields",
+       R"(["displacement", "velocity", "stress", "principal", "damage", "block", "material"])"},
   };
   EXPECT_EQ(as_map(s), expected);
   EXPECT_EQ(s.defaults.size(), expected.size()) << "a default recorded twice";

@@ -288,10 +288,13 @@ every = 0
   Simulation sim(scene, build_scene_model(scene));
   RunOptions options;
   options.out_root = dir.path() / "out";
-  ASSERT_TRUE(sim.run(options).ok);
+  const RunResult result = sim.run(options);
+  ASSERT_TRUE(result.ok) << result.reason;
   const auto history = test::read_csv(dir.path() / "out" / "contrast" / "history.csv");
   // u(right) = sigma (1/E_soft + 1/E_stiff) with sigma = 1 Pa and each layer 1 m long.
-  EXPECT_NEAR(history.at("right.ux").back(), 1.0 / 1e4 + 1.0 / 1e10, 1e-9 * 1e-4);
+  // The contrast multiplies the condition number by 1e6, so round-off grows to about
+  // 1e-8 relative; 1e-7 still resolves the stiff layer's 1e-10 m share to 10 %.
+  EXPECT_NEAR(history.at("right.ux").back(), 1.0 / 1e4 + 1.0 / 1e10, 1e-7 * 1e-4);
 }
 
 TEST(Determinism, HistoryIsIdenticalForOneAndTwoThreads) {

@@ -25,7 +25,7 @@ void require_positive(double value, const std::string& what, const MeshSource& s
 void require_sensible_count(double area, double size, const MeshSource& source) {
   const double estimate = area / (std::sqrt(3.0) / 4.0 * size * size);
   if (estimate > kMostTriangles)
-    source.fail("element_size " + number_text(size) + " would give about " +
+    source.fail("element_size " + format_number(size) + " would give about " +
                 std::to_string(static_cast<long long>(estimate)) + " triangles (at most " +
                 std::to_string(static_cast<long long>(kMostTriangles)) + ")");
 }
@@ -100,7 +100,7 @@ void add_disk(const MeshSpec& spec, const MeshSource& source) {
   const double alpha_deg = spec.flat_half_angle_deg;
   if (!(alpha_deg >= 0.0 && alpha_deg < 90.0))
     MeshSource{source.where, "mesh.flat_half_angle_deg"}.fail(
-        "flat_half_angle_deg must be in [0, 90), got " + number_text(alpha_deg));
+        "flat_half_angle_deg must be in [0, 90), got " + format_number(alpha_deg));
   const double alpha = alpha_deg * std::numbers::pi / 180.0;
   require_sensible_count(std::numbers::pi * r * r, size, size_key);
 

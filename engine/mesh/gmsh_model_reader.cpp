@@ -58,7 +58,7 @@ void require_planar(const std::vector<std::size_t>& tags, const std::vector<doub
   for (std::size_t n = 0; n < tags.size(); ++n)
     if (std::abs(coord[3 * n + 2]) > 1e-9 * extent)
       source.fail("node " + std::to_string(tags[n]) + " is at z = " +
-                  number_text(coord[3 * n + 2]) + " (a 2D mesh must lie in the plane z = 0)");
+                  format_number(coord[3 * n + 2]) + " (a 2D mesh must lie in the plane z = 0)");
 }
 
 NodeTable read_nodes(const MeshSource& source) {

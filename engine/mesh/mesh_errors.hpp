@@ -1,4 +1,5 @@
 #pragma once
+#include "engine/number_format.hpp"
 // How mesh problems are worded: the scene file and key they belong to, and points as text.
 #include <string>
 
@@ -12,10 +13,7 @@ struct MeshSource {
   [[noreturn]] void fail(const std::string& message) const;
 };
 
-/// The shortest decimal form of `value` that reads back to the same double.
-std::string number_text(double value);
-
-/// "(x,y)" in number_text form.
+/// "(x,y)" with each coordinate in format_number form.
 std::string point_text(double x, double y);
 
 }  // namespace rockdd

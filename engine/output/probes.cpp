@@ -10,7 +10,7 @@
 #include "engine/errors.hpp"
 #include "engine/loading/named_nodes.hpp"
 #include "engine/output/atomic_file.hpp"
-#include "engine/output/number_format.hpp"
+#include "engine/number_format.hpp"
 #include "kernels/cst.hpp"
 #include "kernels/principal.hpp"
 
@@ -80,6 +80,22 @@ std::vector<LineSample> locate_line_samples(const Model& model, const ProbeSpec&
     if (s.element >= 0) samples.push_back(s);  // points outside the mesh are left out
   }
   return samples;
+}
+
+/// Stress at each node: the area-weighted mean of the stresses of the elements around it.
+/// Nodes are split between blocks, so the mean never mixes stresses across a crack.
+std::vector<double> nodal_stress(const Model& model) {
+  std::vector<double> stress(3 * static_cast<std::size_t>(model.num_nodes()), 0.0);
+  std::vector<double> weight(static_cast<std::size_t>(model.num_nodes()), 0.0);
+  for (std::int32_t e = 0; e < model.num_elements(); ++e)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t n = model.conn[3 * e + k];
+      weight[n] += model.area0[e];
+      for (int c = 0; c < 3; ++c) stress[3 * n + c] += model.area0[e] * model.stress[3 * e + c];
+    }
+  for (std::int32_t n = 0; n < model.num_nodes(); ++n)
+    for (int c = 0; c < 3; ++c) stress[3 * n + c] /= weight[n];
+  return stress;
 }
 
 }  // namespace
@@ -205,16 +221,25 @@ void Probes::evaluate(const Model& model, std::span<const double> reaction, std:
 }
 
 void Probes::write_profiles(const Model& model, const std::filesystem::path& dir, long step) const {
+  std::vector<double> at_nodes;
   for (const Resolved& r : probes_) {
     const ProbeSpec& spec = *r.spec;
     if (spec.kind != ProbeSpec::Kind::line) continue;
+    if (spec.nodal_stress && at_nodes.empty()) at_nodes = nodal_stress(model);
     std::ostringstream out;
     out << "s,x,y";
     for (const auto& field : spec.fields) out << ',' << field;
     out << '\n';
     for (const LineSample& s : r.samples) {
       out << format_number(s.s) << ',' << format_number(s.x) << ',' << format_number(s.y);
-      const double* sig = &model.stress[3 * static_cast<std::size_t>(s.element)];
+      double sig[3] = {0.0, 0.0, 0.0};
+      for (int c = 0; c < 3; ++c) {
+        if (!spec.nodal_stress) {
+          sig[c] = model.stress[3 * static_cast<std::size_t>(s.element) + c];
+          continue;
+        }
+        for (int k = 0; k < 3; ++k) sig[c] += s.bary[k] * at_nodes[3 * model.conn[3 * s.element + k] + c];
+      }
       double s1 = 0, s2 = 0;
       kernels::principal_values(sig[0], sig[1], sig[2], s1, s2);
       for (const auto& field : spec.fields) {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "engine/output/number_format.hpp"
+#include "engine/number_format.hpp"
 #include "engine/output/vtu_writer.hpp"
 #include "kernels/principal.hpp"
 

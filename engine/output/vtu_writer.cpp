@@ -6,7 +6,7 @@
 #include <stdexcept>
 
 #include "engine/output/atomic_file.hpp"
-#include "engine/output/number_format.hpp"
+#include "engine/number_format.hpp"
 
 namespace rockdd {
 namespace {

@@ -106,6 +106,7 @@ struct ProbeSpec {
   std::string body;                                // body
   std::array<Vec2, 2> line{};                      // line
   int samples = 101;                               // line
+  bool nodal_stress = false;                       // line: stress = "nodal" (recovered) sampling
   std::vector<std::string> fields;
 };
 
@@ -113,7 +114,8 @@ struct ProbeSpec {
 struct OutputSpec {
   std::filesystem::path dir = "out";
   int every = 100;
-  std::vector<std::string> fields{"displacement", "stress", "damage", "block"};
+  std::vector<std::string> fields{"displacement", "velocity", "stress", "principal",
+                                  "damage",       "block",    "material"};
 };
 
 /// The whole scene.

@@ -177,7 +177,7 @@ BoundarySpec read_boundary(TableReader& t) {
     const auto& moving = *c == 'x' ? b.velocity_x : b.velocity_y;
     if (fixed && moving) {
       t.fail("fix", std::string("expected each component fixed or moving, not both; got ") + c +
-                        " fixed and a velocity " + number_text(*moving) + " for " + c);
+                        " fixed and a velocity " + format_number(*moving) + " for " + c);
     }
   }
   return b;
@@ -283,7 +283,7 @@ std::vector<std::string_view> read_probe_target(const TableReader& t, const std:
 }
 
 ProbeSpec read_probe(TableReader& t) {
-  t.allow_only({"name", "at", "on", "body", "line", "samples", "fields"});
+  t.allow_only({"name", "at", "on", "body", "line", "samples", "stress", "fields"});
   ProbeSpec probe;
   probe.name = t.required_string("name");
   check_probe_name(t, probe.name);
@@ -297,6 +297,13 @@ ProbeSpec read_probe(TableReader& t) {
     const auto samples = t.integer("samples", 2, INT_MAX);
     if (!samples) t.record_default("samples", "101");
     probe.samples = samples ? static_cast<int>(*samples) : 101;
+    // "element" samples the element's constant stress (SCENE.md); "nodal" interpolates
+    // stresses averaged at the nodes, which follows steep gradients better.
+    const auto sampling = t.choice("stress", {"element", "nodal"});
+    if (!sampling) t.record_default("stress", "element");
+    probe.nodal_stress = sampling && *sampling == "nodal";
+  } else if (t.has("stress")) {
+    t.fail("stress", "expected stress sampling only in a line probe, got one in a probe with " + kinds[0]);
   } else if (t.has("samples")) {
     t.fail("samples", "expected samples only in a line probe, got one in a probe with " + kinds[0]);
   }

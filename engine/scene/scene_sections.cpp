@@ -182,7 +182,7 @@ TimeSpec read_time(TableReader& root, Analysis analysis) {
   } else if (!time.end && !time.steps) {
     table.fail_table("expected time.end or time.steps, got neither");
   }
-  const std::string dt = number_text(time.dt);
+  const std::string dt = format_number(time.dt);
   time.dt_min = table.number_or("dt_min", time.dt * 1e-6, above(0));
   if (time.dt_min > time.dt) {
     table.fail("dt_min", "expected a number in (0, time.dt = " + dt + "], got " +
@@ -250,7 +250,9 @@ OutputSpec read_output(TableReader& root) {
                                              "damage", "block", "material", "strain"})) {
     output.fields = *fields;
   } else {
-    table.record_default("fields", R"(["displacement", "stress", "damage", "block"])");
+    table.record_default(
+        "fields",
+        R"(["displacement", "velocity", "stress", "principal", "damage", "block", "material"])");
   }
   return output;
 }

@@ -70,11 +70,11 @@ bool Range::contains(double x) const {
 std::string Range::text() const {
   const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
   if (has_lo && has_hi) {
-    return "in " + std::string(lo_closed ? "[" : "(") + number_text(lo) + ", " + number_text(hi) +
+    return "in " + std::string(lo_closed ? "[" : "(") + format_number(lo) + ", " + format_number(hi) +
            (hi_closed ? "]" : ")");
   }
-  if (has_lo) return (lo_closed ? ">= " : "> ") + number_text(lo);
-  if (has_hi) return (hi_closed ? "<= " : "< ") + number_text(hi);
+  if (has_lo) return (lo_closed ? ">= " : "> ") + format_number(lo);
+  if (has_hi) return (hi_closed ? "<= " : "< ") + format_number(hi);
   return "";
 }
 
@@ -86,18 +86,12 @@ Range between(double lo, bool lo_closed, double hi, bool hi_closed) {
   return Range{lo, hi, lo_closed, hi_closed};
 }
 
-std::string number_text(double x) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
-  return std::string(buffer, result.ptr);
-}
-
 std::string describe(const toml::node& node) {
   if (const auto* s = node.as_string()) return "the string " + in_quotes(s->get());
   if (const auto* i = node.as_integer()) return std::to_string(i->get());
   if (const auto* f = node.as_floating_point()) {
     // Keep a float recognisable as one ("10.0", not "10"): it matters for integer keys.
-    std::string text = number_text(f->get());
+    std::string text = format_number(f->get());
     if (std::isfinite(f->get()) && text.find_first_of(".e") == std::string::npos) text += ".0";
     return text;
   }
@@ -184,7 +178,7 @@ double TableReader::required_number(std::string_view key, const Range& range) co
 
 double TableReader::number_or(std::string_view key, double fallback, const Range& range) {
   if (auto x = number(key, range)) return *x;
-  record_default(key, number_text(fallback));
+  record_default(key, format_number(fallback));
   return fallback;
 }
 

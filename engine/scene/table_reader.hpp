@@ -1,4 +1,5 @@
 #pragma once
+#include "engine/number_format.hpp"
 // TableReader: typed access to one TOML table of a scene, where every error names the
 // scene file and line, the full key path, and what was expected against what was found.
 #include <toml++/toml.h>
@@ -34,8 +35,6 @@ Range above(double lo, bool closed = false);
 /// Numbers between `lo` and `hi`, each end open or closed.
 Range between(double lo, bool lo_closed, double hi, bool hi_closed);
 
-/// Shortest text that reads back as the same double ("1", "0.1", "1e-06").
-std::string number_text(double x);
 /// What a node holds, for messages: `0.7`, `the string "abc"`, `an array [1, 2]`, `a table`.
 std::string describe(const toml::node& node);
 
