@@ -192,6 +192,12 @@ RunResult Simulation::run(const RunOptions& options) {
   const double initial_factor = load_factor(scene_.analysis, 0.0, end_time);
   for (std::size_t d = 0; d < model_.X.size(); ++d) f_ext_old_[d] = initial_factor * reference_loads_[d];
   compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, f_int_);
+  // Newmark needs the acceleration that balances the initial state, a0 = M^-1 (F - f_int);
+  // starting from a0 = 0 would leave a velocity error of g dt / 2 for the whole run.
+  for (std::size_t d = 0; d < model_.X.size(); ++d)
+    acceleration_[d] = bc_.prescribed[d] || scene_.analysis != Analysis::dynamic
+                           ? 0.0
+                           : (f_ext_old_[d] - f_int_[d]) / model_.node_mass[d / 2];
   std::vector<double> row;
   auto record = [&](long step, double time, double dt, bool last) {
     if (!outputs) return;
