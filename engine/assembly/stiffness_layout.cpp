@@ -13,15 +13,31 @@ StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::
   const auto num_elements = static_cast<std::int32_t>(conn.size() / 3);
   const NodeIncidence inc = build_node_incidence(conn, num_nodes);
 
-  // Neighbour nodes of each node (itself included), sorted: the node graph of the mesh.
-  std::vector<std::vector<std::int32_t>> neighbours(static_cast<std::size_t>(num_nodes));
+  // Neighbour nodes of each node (itself included), sorted: the node graph of the mesh, as a
+  // compressed list built in two passes (count, then fill) without a container per node.
+  auto gather_neighbours = [&](std::int32_t n, std::int32_t* out) {
+    std::int32_t count = 0;
+    for (std::int32_t i = inc.offset[n]; i < inc.offset[n + 1]; ++i)
+      for (int k = 0; k < 3; ++k) out[count++] = conn[3 * inc.element[i] + k];
+    std::sort(out, out + count);
+    return static_cast<std::int32_t>(std::unique(out, out + count) - out);
+  };
+  std::int32_t max_incident = 0;
+  for (std::int32_t n = 0; n < num_nodes; ++n)
+    max_incident = std::max(max_incident, inc.offset[n + 1] - inc.offset[n]);
+  std::vector<std::int32_t> neighbour_offset(static_cast<std::size_t>(num_nodes) + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::int32_t>(0, num_nodes, 512), [&](auto range) {
+    std::vector<std::int32_t> scratch(3 * static_cast<std::size_t>(max_incident));
+    for (std::int32_t n = range.begin(); n != range.end(); ++n)
+      neighbour_offset[n + 1] = gather_neighbours(n, scratch.data());
+  });
+  for (std::int32_t n = 0; n < num_nodes; ++n) neighbour_offset[n + 1] += neighbour_offset[n];
+  std::vector<std::int32_t> neighbour(static_cast<std::size_t>(neighbour_offset[num_nodes]));
+  tbb::parallel_for(tbb::blocked_range<std::int32_t>(0, num_nodes, 512), [&](auto range) {
+    std::vector<std::int32_t> scratch(3 * static_cast<std::size_t>(max_incident));
     for (std::int32_t n = range.begin(); n != range.end(); ++n) {
-      auto& nb = neighbours[n];
-      for (std::int32_t i = inc.offset[n]; i < inc.offset[n + 1]; ++i)
-        for (int k = 0; k < 3; ++k) nb.push_back(conn[3 * inc.element[i] + k]);
-      std::sort(nb.begin(), nb.end());
-      nb.erase(std::unique(nb.begin(), nb.end()), nb.end());
+      const std::int32_t count = gather_neighbours(n, scratch.data());
+      std::copy(scratch.begin(), scratch.begin() + count, neighbour.begin() + neighbour_offset[n]);
     }
   });
 
@@ -39,8 +55,9 @@ StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::
   p.col_ptr.assign(static_cast<std::size_t>(num_equations) + 1, 0);
   auto for_each_row = [&](std::int32_t col, auto&& visit) {
     const std::int32_t node = dof_of_equation[col] / 2;
-    for (const std::int32_t m : neighbours[node])
+    for (std::int32_t q = neighbour_offset[node]; q < neighbour_offset[node + 1]; ++q)
       for (int c = 0; c < 2; ++c) {
+        const std::int32_t m = neighbour[q];
         const std::int32_t row = equation[2 * m + c];
         if (row >= 0 && row <= col) visit(row);
       }

@@ -105,7 +105,7 @@ Probes::Probes(const Scene& scene, const Model& model) {
   for (std::size_t i = 0; i < scene.probes.size(); ++i) {
     const ProbeSpec& spec = scene.probes[i];
     const std::string key = "probe[" + std::to_string(i) + "]";
-    Resolved r{&spec, {}, {}, {}, 0.0, -1};
+    Resolved r{&spec, {}, {}, false, {}, 0.0, -1};
     switch (spec.kind) {
       case ProbeSpec::Kind::point: {
         std::int32_t best = 0;
@@ -144,7 +144,6 @@ Probes::Probes(const Scene& scene, const Model& model) {
         break;
       }
       case ProbeSpec::Kind::line:
-        r.samples = locate_line_samples(model, spec);
         break;
     }
     if (spec.kind != ProbeSpec::Kind::line)
@@ -220,11 +219,15 @@ void Probes::evaluate(const Model& model, std::span<const double> reaction, std:
   }
 }
 
-void Probes::write_profiles(const Model& model, const std::filesystem::path& dir, long step) const {
+void Probes::write_profiles(const Model& model, const std::filesystem::path& dir, long step) {
   std::vector<double> at_nodes;
-  for (const Resolved& r : probes_) {
+  for (Resolved& r : probes_) {
     const ProbeSpec& spec = *r.spec;
     if (spec.kind != ProbeSpec::Kind::line) continue;
+    if (!r.located) {
+      r.samples = locate_line_samples(model, spec);
+      r.located = true;
+    }
     if (spec.nodal_stress && at_nodes.empty()) at_nodes = nodal_stress(model);
     std::ostringstream out;
     out << "s,x,y";

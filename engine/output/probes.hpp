@@ -31,14 +31,16 @@ class Probes {
   void evaluate(const Model& model, std::span<const double> reaction, std::vector<double>& row);
   /// Whether any probe is a line probe.
   bool has_line_probes() const;
-  /// Writes profiles/<probe>_<step>.csv for every line probe (atomically).
-  void write_profiles(const Model& model, const std::filesystem::path& dir, long step) const;
+  /// Writes profiles/<probe>_<step>.csv for every line probe (atomically). The samples are
+  /// located in the reference mesh on the first call: a run without outputs never pays it.
+  void write_profiles(const Model& model, const std::filesystem::path& dir, long step);
 
  private:
   struct Resolved {
     const ProbeSpec* spec;
     std::vector<std::int32_t> nodes;               // point: 1 node; curve/body: its nodes
-    std::vector<LineSample> samples;               // line
+    std::vector<LineSample> samples;               // line, located on first use
+    bool located = false;
     std::vector<double> ref_centered;              // body: reference positions minus centroid
     double rotation = 0.0;                         // body: cumulative rotation (rad)
     std::int32_t body = -1;                        // body: index, -1 = every body
