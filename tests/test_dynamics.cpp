@@ -37,14 +37,9 @@ every = 0
 }
 
 std::map<std::string, std::vector<double>> run(const std::string& text) {
-  test::TempDir dir;
-  Scene scene = test::scene_from_text(text, dir.path());
-  Simulation sim(scene, build_scene_model(scene));
-  RunOptions options;
-  options.out_root = dir.path() / "out";
-  const RunResult result = sim.run(options);
-  EXPECT_TRUE(result.ok) << result.reason;
-  return test::read_csv(dir.path() / "out" / scene.name / "history.csv");
+  const test::SceneRun r = test::run_scene_text(text);
+  EXPECT_TRUE(r.result.ok) << r.result.reason;
+  return r.history;
 }
 
 TEST(FreeBlock, FallsAsHalfGTSquaredWithBothIntegrators) {

@@ -51,25 +51,8 @@ every = 0
 )";
 }
 
-struct StaticRun {
-  Model model;
-  RunResult result;
-  std::map<std::string, std::vector<double>> history;
-};
-
-StaticRun run_scene_text(const std::string& text, const std::vector<std::string>& overrides = {},
-                   int threads = 0) {
-  test::TempDir dir;
-  Scene scene = test::scene_from_text(text, dir.path(), overrides);
-  Simulation sim(scene, build_scene_model(scene));
-  RunOptions options;
-  options.out_root = dir.path() / "out";
-  options.threads = threads;
-  StaticRun run{{}, sim.run(options), {}};
-  run.model = sim.model();
-  run.history = test::read_csv(dir.path() / "out" / scene.name / "history.csv");
-  return run;
-}
+using test::run_scene_text;
+using StaticRun = test::SceneRun;
 
 TEST(PatchTest, UniaxialTensionPlaneStressIsExactOnAnUnstructuredMesh) {
   // sigma_xx = F / (h t) = 1e6 / (1 * 0.5) = 2 MPa in every element; sigma_yy = sigma_xy = 0.
@@ -241,8 +224,7 @@ TEST(StaticAnalysis, UnrestrainedBlockIsRejectedNamingIt) {
 TEST(StaticAnalysis, StiffnessContrastOfOneMillionStaysAccurate) {
   // Two conformal layers in series under uniaxial stress, E1 / E2 = 1e6: each layer strains
   // by sigma / E_i exactly (the patch test holds per material).
-  test::TempDir dir;
-  std::ofstream(dir.path() / "layers.geo") << R"(
+  const std::string layers_geo = R"(
 Point(1) = {0, 0, 0, 0.1}; Point(2) = {1, 0, 0, 0.1}; Point(3) = {2, 0, 0, 0.1};
 Point(4) = {2, 1, 0, 0.1}; Point(5) = {1, 1, 0, 0.1}; Point(6) = {0, 1, 0, 0.1};
 Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 5}; Line(5) = {5, 6};
@@ -284,13 +266,9 @@ fields = ["ux"]
 [output]
 every = 0
 )";
-  Scene scene = test::scene_from_text(text, dir.path());
-  Simulation sim(scene, build_scene_model(scene));
-  RunOptions options;
-  options.out_root = dir.path() / "out";
-  const RunResult result = sim.run(options);
-  ASSERT_TRUE(result.ok) << result.reason;
-  const auto history = test::read_csv(dir.path() / "out" / "contrast" / "history.csv");
+  const StaticRun run = run_scene_text(text, {}, 0, {{"layers.geo", layers_geo}});
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& history = run.history;
   // u(right) = sigma (1/E_soft + 1/E_stiff) with sigma = 1 Pa and each layer 1 m long.
   // The contrast multiplies the condition number by 1e6, so round-off grows to about
   // 1e-8 relative; 1e-7 still resolves the stiff layer's 1e-10 m share to 10 %.

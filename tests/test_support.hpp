@@ -41,6 +41,32 @@ inline Scene scene_from_text(const std::string& text, const std::filesystem::pat
   return scene;
 }
 
+/// What a test run leaves: the final model, the result and history.csv by column.
+struct SceneRun {
+  Model model;
+  RunResult result;
+  std::map<std::string, std::vector<double>> history;
+};
+
+inline std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& file);
+
+/// Runs a scene given as TOML text in a temporary folder (with `files` written beside it).
+inline SceneRun run_scene_text(const std::string& text, const std::vector<std::string>& overrides = {},
+                               int threads = 0,
+                               const std::map<std::string, std::string>& files = {}) {
+  TempDir dir;
+  for (const auto& [name, content] : files) std::ofstream(dir.path() / name) << content;
+  Scene scene = scene_from_text(text, dir.path(), overrides);
+  Simulation sim(scene, build_scene_model(scene));
+  RunOptions options;
+  options.out_root = dir.path() / "out";
+  options.threads = threads;
+  SceneRun run{{}, sim.run(options), {}};
+  run.model = sim.model();
+  run.history = read_csv(dir.path() / "out" / scene.name / "history.csv");
+  return run;
+}
+
 /// A scene file from data/.
 inline std::filesystem::path data_file(const std::string& name) {
   return std::filesystem::path(ROCKDD_SOURCE_DIR) / "data" / name;
