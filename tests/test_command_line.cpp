@@ -108,6 +108,25 @@ TEST(CommandLine, EveryMalformedSceneExitsTwoNamingFileAndKeyAndWritesNothing) {
   EXPECT_GE(checked, 15);
 }
 
+TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"msh", "quad.msh"},         {"msh", "zero_area.msh"},      {"msh", "truncated.msh"},
+      {"geo", "syntax_error.geo"}, {"geo", "unmeshable.geo"},     {"geo", "stray_curve.geo"},
+      {"geo", "second_order.geo"}, {"msh", "does_not_exist.msh"},
+  };
+  for (const auto& [kind, file] : cases) {
+    test::TempDir tmp;
+    std::ofstream(tmp.path() / "scene.toml")
+        << "[scene]\nname = \"bad-mesh\"\n[mesh]\n" << kind << " = \""
+        << (kSource / "tests/meshes" / file).string()
+        << "\"\n[[material]]\ndensity = 2000.0\nyoung = 1e9\npoisson = 0.2\n";
+    const auto inv = rockdd_cli("run scene.toml --out out", tmp.path());
+    EXPECT_EQ(inv.exit_code, 2) << file << ": " << inv.output;
+    EXPECT_NE(inv.output.find("mesh." + kind), std::string::npos) << file << ": " << inv.output;
+    EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out")) << file;
+  }
+}
+
 TEST(CommandLine, UsageErrorsExitTwo) {
   test::TempDir tmp;
   EXPECT_EQ(rockdd_cli("", tmp.path()).exit_code, 2);
