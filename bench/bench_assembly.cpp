@@ -36,7 +36,8 @@ Setup& setup_for(long elements) {
     slot->model = build_model(scene, bench::structured_mesh(n, n));
     slot->bc = build_boundary_conditions(scene, slot->model);
     slot->coloring = color_elements(slot->model.conn, slot->model.num_nodes());
-    slot->layout = build_stiffness_layout(slot->model.conn, slot->model.num_nodes(), slot->bc.equation);
+    slot->layout =
+        build_stiffness_layout(slot->model.conn, slot->model.num_nodes(), slot->bc.equation);
     slot->values.assign(static_cast<std::size_t>(slot->layout.pattern.nnz()), 0.0);
   }
   return *slot;
@@ -69,7 +70,8 @@ void BM_StiffnessLayout(benchmark::State& state) {
   Setup& s = setup_for(state.range(0));
   tbb::global_control threads(tbb::global_control::max_allowed_parallelism, state.range(1));
   for (auto _ : state)
-    benchmark::DoNotOptimize(build_stiffness_layout(s.model.conn, s.model.num_nodes(), s.bc.equation));
+    benchmark::DoNotOptimize(
+        build_stiffness_layout(s.model.conn, s.model.num_nodes(), s.bc.equation));
   state.SetItemsProcessed(state.iterations() * s.model.num_elements());
 }
 

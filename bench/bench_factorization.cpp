@@ -42,10 +42,12 @@ System& system_for(long dofs) {
   return *slot;
 }
 
-void report(benchmark::State& state, const System& s, const SolverStats& stats, double flops_per_iteration) {
+void report(benchmark::State& state, const System& s, const SolverStats& stats,
+            double flops_per_iteration) {
   state.counters["dofs"] = s.layout.pattern.n;
-  state.counters["GFLOP/s"] = benchmark::Counter(flops_per_iteration * 1e-9 * static_cast<double>(state.iterations()),
-                                                 benchmark::Counter::kIsRate);
+  state.counters["GFLOP/s"] =
+      benchmark::Counter(flops_per_iteration * 1e-9 * static_cast<double>(state.iterations()),
+                         benchmark::Counter::kIsRate);
   state.counters["factor_flops"] = stats.last_factor_flops;
 }
 
@@ -90,7 +92,12 @@ void BM_Solve(benchmark::State& state) {
 }
 
 void sizes(benchmark::internal::Benchmark* b) {
-  b->Arg(10'000)->Arg(100'000)->Arg(1'000'000)->ArgName("dofs")->Unit(benchmark::kMillisecond)->UseRealTime();
+  b->Arg(10'000)
+      ->Arg(100'000)
+      ->Arg(1'000'000)
+      ->ArgName("dofs")
+      ->Unit(benchmark::kMillisecond)
+      ->UseRealTime();
 }
 
 BENCHMARK(BM_Analyze)->Apply(sizes);

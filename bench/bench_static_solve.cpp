@@ -6,13 +6,13 @@
 
 #include <chrono>
 
-#include "engine/rockdd.hpp"
-#include "engine/solver/cholmod_solver.hpp"
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
 #include "engine/loading/boundary_conditions.hpp"
 #include "engine/loading/external_loads.hpp"
+#include "engine/rockdd.hpp"
+#include "engine/solver/cholmod_solver.hpp"
 
 namespace rockdd {
 namespace {
@@ -22,7 +22,8 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 void BM_BrazilianStaticSolveVsBareCholmod(benchmark::State& state) {
-  const Scene scene = load_scene(std::filesystem::path(ROCKDD_SOURCE_DIR) / "data/brazilian_disk_elastic.toml");
+  const Scene scene =
+      load_scene(std::filesystem::path(ROCKDD_SOURCE_DIR) / "data/brazilian_disk_elastic.toml");
   const Model model = build_scene_model(scene);  // meshing is not part of the solve
 
   // The same matrix and right-hand side for the bare reference.
@@ -64,7 +65,12 @@ void BM_BrazilianStaticSolveVsBareCholmod(benchmark::State& state) {
 }
 
 BENCHMARK(BM_BrazilianStaticSolveVsBareCholmod)
-    ->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMillisecond)->UseRealTime()->MinTime(2.0);
+    ->Arg(1)
+    ->Arg(2)
+    ->ArgName("threads")
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->MinTime(2.0);
 
 }  // namespace
 }  // namespace rockdd

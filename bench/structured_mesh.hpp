@@ -19,7 +19,8 @@ inline Mesh structured_mesh(int nx, int ny, double h = 1e-3) {
   auto node = [&](int i, int j) { return static_cast<std::int32_t>(j * (nx + 1) + i); };
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i) {
-      const std::int32_t a = node(i, j), b = node(i + 1, j), c = node(i + 1, j + 1), d = node(i, j + 1);
+      const std::int32_t a = node(i, j), b = node(i + 1, j), c = node(i + 1, j + 1),
+                         d = node(i, j + 1);
       for (const std::int32_t n : {a, b, c, a, c, d}) mesh.triangles.push_back(n);
     }
   mesh.element_surface.assign(mesh.triangles.size() / 3, 0);

@@ -11,8 +11,12 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   return scene;
 }
 
-Model build_scene_model(const Scene& scene) { return build_model(scene, build_mesh(scene.mesh, scene.file)); }
+Model build_scene_model(const Scene& scene) {
+  return build_model(scene, build_mesh(scene.mesh, scene.file));
+}
 
-const char* version() { return ROCKDD_VERSION; }
+const char* version() {
+  return ROCKDD_VERSION;
+}
 
 }  // namespace rockdd

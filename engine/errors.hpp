@@ -11,7 +11,9 @@ class InputError : public std::runtime_error {
   /// `where` is the file (and line, when known), `key` the key path, `what` what was expected.
   InputError(const std::string& where, const std::string& key, const std::string& expected)
       : std::runtime_error(where + (key.empty() ? "" : ": " + key) + ": " + expected),
-        where_(where), key_(key), expected_(expected) {}
+        where_(where),
+        key_(key),
+        expected_(expected) {}
   const std::string& where() const { return where_; }
   const std::string& key() const { return key_; }
   const std::string& expected() const { return expected_; }

@@ -26,16 +26,20 @@ double end_time_of(const Scene& scene) {
 
 const char* analysis_name(Analysis a) {
   switch (a) {
-    case Analysis::static_: return "static";
-    case Analysis::quasi_static: return "quasi-static";
-    case Analysis::dynamic: return "dynamic";
+    case Analysis::static_:
+      return "static";
+    case Analysis::quasi_static:
+      return "quasi-static";
+    case Analysis::dynamic:
+      return "dynamic";
   }
   return "";
 }
 
 }  // namespace
 
-Simulation::Simulation(Scene scene, Model model) : scene_(std::move(scene)), model_(std::move(model)) {
+Simulation::Simulation(Scene scene, Model model)
+    : scene_(std::move(scene)), model_(std::move(model)) {
   bc_ = build_boundary_conditions(scene_, model_);
   if (scene_.analysis == Analysis::static_) check_static_restraint(scene_, model_, bc_);
   reference_loads_ = build_reference_loads(scene_, model_);
@@ -47,8 +51,8 @@ Simulation::Simulation(Scene scene, Model model) : scene_(std::move(scene)), mod
   if (bc_.num_equations > 0) solver_.analyze(layout_.pattern);
 
   const std::size_t num_dofs = model_.X.size();
-  for (auto* field : {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_,
-                      &u_trial_, &du_})
+  for (auto* field :
+       {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_, &u_trial_, &du_})
     field->assign(num_dofs, 0.0);
   rhs_.assign(static_cast<std::size_t>(bc_.num_equations), 0.0);
   for (const InitialSpec& init : scene_.initial) {
@@ -66,7 +70,8 @@ Simulation::Simulation(Scene scene, Model model) : scene_(std::move(scene)), mod
         cy += model_.node_mass[n] * model_.X[2 * n + 1];
         m += model_.node_mass[n];
       }
-    if (m <= 0) throw InputError(scene_.file.string(), "initial.body", "no body named '" + init.body + "'");
+    if (m <= 0)
+      throw InputError(scene_.file.string(), "initial.body", "no body named '" + init.body + "'");
     cx /= m;
     cy /= m;
     for (std::int32_t n = 0; n < model_.num_nodes(); ++n)
@@ -123,15 +128,16 @@ bool Simulation::attempt_step(long step, double dt, double load_factor, StepCont
       char buf[160];
       std::snprintf(buf, sizeof buf,
                     "step %ld: the displacement increment of node %zu is not finite "
-                    "(check stiffness contrasts, restraints and dt)", step, d / 2);
+                    "(check stiffness contrasts, restraints and dt)",
+                    step, d / 2);
       throw RunFailure(buf);
     }
     largest = std::max(largest, std::abs(du_[d]));
   }
   if (!control.displacement_ok(largest)) {
     char buf[160];
-    std::snprintf(buf, sizeof buf, "largest displacement increment %.3g m exceeds max_step_displacement",
-                  largest);
+    std::snprintf(buf, sizeof buf,
+                  "largest displacement increment %.3g m exceeds max_step_displacement", largest);
     control.reject(step, buf);
     return false;
   }
@@ -190,7 +196,8 @@ RunResult Simulation::run(const RunOptions& options) {
 
   // Step 0: the initial state.
   const double initial_factor = load_factor(scene_.analysis, 0.0, end_time);
-  for (std::size_t d = 0; d < model_.X.size(); ++d) f_ext_old_[d] = initial_factor * reference_loads_[d];
+  for (std::size_t d = 0; d < model_.X.size(); ++d)
+    f_ext_old_[d] = initial_factor * reference_loads_[d];
   compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, f_int_);
   // Newmark needs the acceleration that balances the initial state, a0 = M^-1 (F - f_int);
   // starting from a0 = 0 would leave a velocity error of g dt / 2 for the whole run.
@@ -239,7 +246,8 @@ RunResult Simulation::run(const RunOptions& options) {
       outputs->frame(model_, steps_, t);  // the last committed state, for diagnosis
     }
   }
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.summary = summary(result, wall, threads);
   result.summary["dt_changes"] = control.changes();
   if (outputs) {
@@ -249,7 +257,8 @@ RunResult Simulation::run(const RunOptions& options) {
   return result;
 }
 
-nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds, int threads) const {
+nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
+                                   int threads) const {
   nlohmann::json s;
   s["scene"] = scene_.name;
   s["status"] = result.ok ? "ok" : "failed";

@@ -28,13 +28,13 @@ class Probes;
 struct StepReport {
   long step = 0;
   double time = 0, dt = 0, end_time = 0;
-  long num_steps = 0;                              // planned steps; 0 when time-driven
+  long num_steps = 0;  // planned steps; 0 when time-driven
 };
 
 /// How to run: where outputs go, threads, and a per-step callback.
 struct RunOptions {
-  std::filesystem::path out_root;                  // empty: the scene's output.dir
-  int threads = 0;                                 // 0: every hardware thread
+  std::filesystem::path out_root;  // empty: the scene's output.dir
+  int threads = 0;                 // 0: every hardware thread
   bool write_outputs = true;
   std::function<void(const StepReport&, const Model&)> on_step;
 };
@@ -88,7 +88,7 @@ class Simulation {
 
   // Step state (2 per node unless noted).
   std::vector<double> acceleration_, f_int_, f_ext_, f_ext_old_, reaction_, reaction_old_;
-  std::vector<double> u_trial_, du_, rhs_;         // rhs_ is per equation
+  std::vector<double> u_trial_, du_, rhs_;  // rhs_ is per equation
   double external_work_ = 0.0;
 
   long steps_ = 0, redone_steps_ = 0;

@@ -15,9 +15,11 @@ void check_supported_features(const Scene& scene) {
     const std::string key = "material[" + std::to_string(i) + "].";
     if (m.tensile_strength)
       throw InputError(file, key + "tensile_strength", "damage and fracture are not supported yet");
-    if (m.cohesion) throw InputError(file, key + "cohesion", "damage and fracture are not supported yet");
+    if (m.cohesion)
+      throw InputError(file, key + "cohesion", "damage and fracture are not supported yet");
     if (m.compressive_strength)
-      throw InputError(file, key + "compressive_strength", "damage and fracture are not supported yet");
+      throw InputError(file, key + "compressive_strength",
+                       "damage and fracture are not supported yet");
     if (m.homogeneity)
       throw InputError(file, key + "homogeneity", "Weibull heterogeneity is not supported yet");
   }

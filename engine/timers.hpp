@@ -12,7 +12,8 @@ struct StageTimers {
 /// Adds the lifetime of the scope to one accumulator.
 class ScopedTimer {
  public:
-  explicit ScopedTimer(double& seconds) : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
+  explicit ScopedTimer(double& seconds)
+      : seconds_(seconds), start_(std::chrono::steady_clock::now()) {}
   ~ScopedTimer() {
     seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
   }

@@ -88,7 +88,8 @@ TEST(Layout, PatternIsUpperTriangularSortedWithDiagonal) {
   const SparsityPattern& p = a.layout.pattern;
   for (std::int32_t j = 0; j < p.n; ++j) {
     ASSERT_LT(p.col_ptr[j], p.col_ptr[j + 1]);
-    for (std::int32_t q = p.col_ptr[j]; q + 1 < p.col_ptr[j + 1]; ++q) EXPECT_LT(p.row_idx[q], p.row_idx[q + 1]);
+    for (std::int32_t q = p.col_ptr[j]; q + 1 < p.col_ptr[j + 1]; ++q)
+      EXPECT_LT(p.row_idx[q], p.row_idx[q + 1]);
     EXPECT_EQ(p.row_idx[a.layout.diagonal[j]], j);
   }
 }
@@ -139,7 +140,8 @@ TEST(Assembly, InternalForceEqualsStiffnessTimesDisplacement) {
       stress(3 * a.model.num_elements()), f(a.model.X.size());
   compute_internal_force(a.model, a.coloring, uu, strain, stress, f);
   const Eigen::VectorXd ku = k * u;
-  for (Eigen::Index i = 0; i < u.size(); ++i) EXPECT_NEAR(f[i], ku(i), 1e-9 * ku.cwiseAbs().maxCoeff());
+  for (Eigen::Index i = 0; i < u.size(); ++i)
+    EXPECT_NEAR(f[i], ku(i), 1e-9 * ku.cwiseAbs().maxCoeff());
   // Clapeyron: 1/2 u.K.u equals the summed element strain energy.
   EXPECT_NEAR(strain_energy(a.model, strain, stress), 0.5 * u.dot(ku), 1e-10 * 0.5 * u.dot(ku));
 }
@@ -159,7 +161,8 @@ TEST(Assembly, BitwiseIdenticalForOneAndTwoThreads) {
     values.assign(static_cast<std::size_t>(layout.pattern.nnz()), 0.0);
     assemble_stiffness(model, coloring, layout, equation, 3.0, values);
     std::vector<double> u(model.X.size()), strain(3 * model.num_elements()), stress(strain.size());
-    for (std::size_t d = 0; d < u.size(); ++d) u[d] = 1e-5 * std::sin(0.37 * static_cast<double>(d));
+    for (std::size_t d = 0; d < u.size(); ++d)
+      u[d] = 1e-5 * std::sin(0.37 * static_cast<double>(d));
     f.assign(model.X.size(), 0.0);
     compute_internal_force(model, coloring, u, strain, stress, f);
   };

@@ -4,8 +4,8 @@
 
 #include <set>
 
-#include "engine/model/block_topology.hpp"
 #include "engine/errors.hpp"
+#include "engine/model/block_topology.hpp"
 #include "engine/model/edge_adjacency.hpp"
 
 namespace rockdd {
@@ -67,7 +67,8 @@ TEST(BlockTopology, ElementDetachedAloneBecomesItsOwnBlock) {
   std::vector<std::uint8_t> intact(kStrip.size(), 1);
   for (int k = 0; k < 3; ++k) {  // element 3 detaches: all its edges stop binding
     intact[3 * 3 + k] = 0;
-    if (adj.neighbor[3 * 3 + k] >= 0) intact[3 * adj.neighbor[3 * 3 + k] + adj.neighbor_edge[3 * 3 + k]] = 0;
+    if (adj.neighbor[3 * 3 + k] >= 0)
+      intact[3 * adj.neighbor[3 * 3 + k] + adj.neighbor_edge[3 * 3 + k]] = 0;
   }
   const BlockTopology topo = form_blocks(kStrip, 6, adj, intact);
   // Element 2 was held only through edge 1-5 of element 3, so it is freed too:

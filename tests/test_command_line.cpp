@@ -17,7 +17,8 @@ struct Invocation {
 };
 
 Invocation rockdd_cli(const std::string& args, const std::filesystem::path& cwd) {
-  const std::string command = "cd '" + cwd.string() + "' && '" + ROCKDD_BINARY + "' " + args + " 2>&1";
+  const std::string command =
+      "cd '" + cwd.string() + "' && '" + ROCKDD_BINARY + "' " + args + " 2>&1";
   Invocation inv;
   FILE* pipe = popen(command.c_str(), "r");
   std::array<char, 4096> buffer{};
@@ -37,10 +38,10 @@ TEST(CommandLine, RunWritesEveryPromisedOutput) {
   ASSERT_EQ(inv.exit_code, 0) << inv.output;
   const auto dir = tmp.path() / "out" / "cantilever-model-2";
   const auto summary = nlohmann::json::parse(test::read_text(dir / "summary.json"));
-  for (const char* key : {"status", "rockdd_version", "threads", "wall_seconds", "steps", "redone_steps",
-                          "open_close_iterations", "max_open_close_per_step", "damage_iterations",
-                          "elements", "nodes", "blocks", "damaged_elements", "peaks", "defaults",
-                          "timers", "solver"})
+  for (const char* key :
+       {"status", "rockdd_version", "threads", "wall_seconds", "steps", "redone_steps",
+        "open_close_iterations", "max_open_close_per_step", "damage_iterations", "elements",
+        "nodes", "blocks", "damaged_elements", "peaks", "defaults", "timers", "solver"})
     EXPECT_TRUE(summary.contains(key)) << key;
   EXPECT_EQ(summary["status"], "ok");
   EXPECT_EQ(summary["threads"], 2);
@@ -72,8 +73,10 @@ TEST(CommandLine, RunWritesEveryPromisedOutput) {
 TEST(CommandLine, ResultsDoNotDependOnTheThreadCount) {
   test::TempDir tmp;
   const std::string scene = (kSource / "data/brazilian_disk_elastic.toml").string();
-  ASSERT_EQ(rockdd_cli("run '" + scene + "' --quiet --threads 1 --out one", tmp.path()).exit_code, 0);
-  ASSERT_EQ(rockdd_cli("run '" + scene + "' --quiet --threads 2 --out two", tmp.path()).exit_code, 0);
+  ASSERT_EQ(rockdd_cli("run '" + scene + "' --quiet --threads 1 --out one", tmp.path()).exit_code,
+            0);
+  ASSERT_EQ(rockdd_cli("run '" + scene + "' --quiet --threads 2 --out two", tmp.path()).exit_code,
+            0);
   for (const char* file : {"history.csv", "profiles/diameter_000001.csv", "frames/frame_00001.vtu"})
     EXPECT_EQ(test::read_text(tmp.path() / "one/brazilian-disk-elastic" / file),
               test::read_text(tmp.path() / "two/brazilian-disk-elastic" / file))
@@ -82,7 +85,8 @@ TEST(CommandLine, ResultsDoNotDependOnTheThreadCount) {
 
 TEST(CommandLine, CheckPrintsCountsAndDefaultsWithoutSolving) {
   test::TempDir tmp;
-  const auto inv = rockdd_cli("check '" + (kSource / "data/cantilever_model_1.toml").string() + "'", tmp.path());
+  const auto inv =
+      rockdd_cli("check '" + (kSource / "data/cantilever_model_1.toml").string() + "'", tmp.path());
   ASSERT_EQ(inv.exit_code, 0) << inv.output;
   EXPECT_NE(inv.output.find("elements: 32"), std::string::npos) << inv.output;
   EXPECT_NE(inv.output.find("blocks: 1"), std::string::npos) << inv.output;
@@ -95,13 +99,15 @@ TEST(CommandLine, EveryMalformedSceneExitsTwoNamingFileAndKeyAndWritesNothing) {
   const std::string cases = test::read_text(bad / "CASES.md");
   const std::regex row(R"(\|\s*`?([A-Za-z0-9_\-]+\.toml)`?\s*\|\s*`([^`]+)`)");
   int checked = 0;
-  for (auto it = std::sregex_iterator(cases.begin(), cases.end(), row); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(cases.begin(), cases.end(), row);
+       it != std::sregex_iterator(); ++it) {
     const std::string file = (*it)[1], key = (*it)[2];
     test::TempDir tmp;
     const auto inv = rockdd_cli("run '" + (bad / file).string() + "' --out out", tmp.path());
     EXPECT_EQ(inv.exit_code, 2) << file << ": " << inv.output;
     EXPECT_NE(inv.output.find(file), std::string::npos) << file << ": " << inv.output;
-    EXPECT_NE(inv.output.find(key), std::string::npos) << file << " should name " << key << ": " << inv.output;
+    EXPECT_NE(inv.output.find(key), std::string::npos)
+        << file << " should name " << key << ": " << inv.output;
     EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out")) << file << " wrote outputs";
     ++checked;
   }
@@ -117,8 +123,8 @@ TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
   for (const auto& [kind, file] : cases) {
     test::TempDir tmp;
     std::ofstream(tmp.path() / "scene.toml")
-        << "[scene]\nname = \"bad-mesh\"\n[mesh]\n" << kind << " = \""
-        << (kSource / "tests/meshes" / file).string()
+        << "[scene]\nname = \"bad-mesh\"\n[mesh]\n"
+        << kind << " = \"" << (kSource / "tests/meshes" / file).string()
         << "\"\n[[material]]\ndensity = 2000.0\nyoung = 1e9\npoisson = 0.2\n";
     const auto inv = rockdd_cli("run scene.toml --out out", tmp.path());
     EXPECT_EQ(inv.exit_code, 2) << file << ": " << inv.output;
@@ -143,7 +149,8 @@ TEST(CommandLine, UsageErrorsExitTwo) {
 TEST(CommandLine, FeaturesOfLaterStagesAreRejectedClearly) {
   test::TempDir tmp;
   const std::string scene = (kSource / "data/cantilever_model_1.toml").string();
-  const auto damage = rockdd_cli("run '" + scene + "' --set material.0.tensile_strength=2e6", tmp.path());
+  const auto damage =
+      rockdd_cli("run '" + scene + "' --set material.0.tensile_strength=2e6", tmp.path());
   EXPECT_EQ(damage.exit_code, 2);
   EXPECT_NE(damage.output.find("material[0].tensile_strength"), std::string::npos) << damage.output;
   EXPECT_NE(damage.output.find("not supported yet"), std::string::npos) << damage.output;
@@ -163,7 +170,8 @@ TEST(CommandLine, NumericalFailureExitsOneWithTheReason) {
   EXPECT_EQ(inv.exit_code, 1) << inv.output;
   EXPECT_NE(inv.output.find("max_step_displacement"), std::string::npos) << inv.output;
   EXPECT_NE(inv.output.find("dt_min"), std::string::npos) << inv.output;
-  const auto summary = nlohmann::json::parse(test::read_text(tmp.path() / "out/cantilever-model-1/summary.json"));
+  const auto summary =
+      nlohmann::json::parse(test::read_text(tmp.path() / "out/cantilever-model-1/summary.json"));
   EXPECT_EQ(summary["status"], "failed");
   EXPECT_TRUE(summary.contains("reason"));
 }

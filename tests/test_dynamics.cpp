@@ -17,7 +17,8 @@ gravity = [0.0, -10.0]
 [time]
 dt = 0.01
 end = 1.0
-integrator = ")" + integrator + R"("
+integrator = ")" +
+         integrator + R"("
 [mesh]
 shape = "rectangle"
 size = [1.0, 0.5]

@@ -77,7 +77,8 @@ TEST(BrazilianDisk, ElasticStressesAlongTheDiameterMatchHuang2015) {
   const double P = 19.2478e6 * 2.0 * R * std::sin(a) * t;  // the scene's flat pressure x width
   const double scale = P / (std::numbers::pi * t * R);
   std::filesystem::path profile;
-  for (const auto& f : std::filesystem::directory_iterator(out.dir / "profiles")) profile = f.path();
+  for (const auto& f : std::filesystem::directory_iterator(out.dir / "profiles"))
+    profile = f.path();
   const auto p = test::read_csv(profile);
   // Huang's eqs. (15)-(16) are an approximation: integrated over the loaded diameter their
   // sigma_x leaves a net horizontal force of -1.76 % of P (it should be 0 by statics), and a
@@ -95,7 +96,8 @@ TEST(BrazilianDisk, ElasticStressesAlongTheDiameterMatchHuang2015) {
     huang_stresses(y, P, R, a, t, sx, sy);
     worst_x = std::max(worst_x, std::abs(p.at("sxx")[i] - sx) / scale);
     worst_y_80 = std::max(worst_y_80, std::abs(p.at("syy")[i] - sy) / scale);
-    if (std::abs(y) <= 0.6 * R) worst_y_60 = std::max(worst_y_60, std::abs(p.at("syy")[i] - sy) / scale);
+    if (std::abs(y) <= 0.6 * R)
+      worst_y_60 = std::max(worst_y_60, std::abs(p.at("syy")[i] - sy) / scale);
     ++compared;
   }
   EXPECT_GE(compared, 75);

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/output/atomic_file.hpp"
 #include "engine/number_format.hpp"
+#include "engine/output/atomic_file.hpp"
 #include "engine/output/vtu_writer.hpp"
 
 namespace rockdd {

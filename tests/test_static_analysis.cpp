@@ -18,7 +18,8 @@ std::string uniaxial_plate(const std::string& plane, double poisson) {
 [scene]
 name = "uniaxial"
 analysis = "static"
-plane = ")" + plane + R"("
+plane = ")" +
+         plane + R"("
 thickness = 0.5
 [mesh]
 shape = "rectangle"
@@ -28,7 +29,8 @@ element_size = 0.13
 body = "body"
 density = 2500.0
 young = 40e9
-poisson = )" + std::to_string(poisson) + R"(
+poisson = )" +
+         std::to_string(poisson) + R"(
 [[boundary]]
 on = "left"
 fix = ["x"]

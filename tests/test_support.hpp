@@ -51,8 +51,8 @@ struct SceneRun {
 inline std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& file);
 
 /// Runs a scene given as TOML text in a temporary folder (with `files` written beside it).
-inline SceneRun run_scene_text(const std::string& text, const std::vector<std::string>& overrides = {},
-                               int threads = 0,
+inline SceneRun run_scene_text(const std::string& text,
+                               const std::vector<std::string>& overrides = {}, int threads = 0,
                                const std::map<std::string, std::string>& files = {}) {
   TempDir dir;
   for (const auto& [name, content] : files) std::ofstream(dir.path() / name) << content;

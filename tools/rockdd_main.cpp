@@ -41,7 +41,8 @@ long parse_integer(const std::string& flag, const char* text, long min) {
   char* end = nullptr;
   const long value = std::strtol(text, &end, 10);
   if (*text == '\0' || *end != '\0' || value < min)
-    throw UsageError{flag + " expects an integer >= " + std::to_string(min) + ", got '" + text + "'"};
+    throw UsageError{flag + " expects an integer >= " + std::to_string(min) + ", got '" + text +
+                     "'"};
   return value;
 }
 
@@ -57,15 +58,24 @@ Command parse_command_line(int argc, char** argv) {
       if (i + 1 >= argc) throw UsageError{arg + " needs a value"};
       return argv[++i];
     };
-    if (arg == "--out") cmd.out = value();
-    else if (arg == "--threads") cmd.threads = static_cast<int>(parse_integer(arg, value(), 1));
-    else if (arg == "--set") cmd.overrides.emplace_back(value());
-    else if (arg == "--quiet") cmd.quiet = true;
-    else if (arg == "--realizations") cmd.realizations = parse_integer(arg, value(), 1);
-    else if (arg == "--first-seed") cmd.first_seed = parse_integer(arg, value(), 0);
-    else if (!arg.empty() && arg[0] == '-') throw UsageError{"unknown option '" + arg + "'"};
-    else if (cmd.scene.empty()) cmd.scene = arg;
-    else throw UsageError{"unexpected argument '" + arg + "'"};
+    if (arg == "--out")
+      cmd.out = value();
+    else if (arg == "--threads")
+      cmd.threads = static_cast<int>(parse_integer(arg, value(), 1));
+    else if (arg == "--set")
+      cmd.overrides.emplace_back(value());
+    else if (arg == "--quiet")
+      cmd.quiet = true;
+    else if (arg == "--realizations")
+      cmd.realizations = parse_integer(arg, value(), 1);
+    else if (arg == "--first-seed")
+      cmd.first_seed = parse_integer(arg, value(), 0);
+    else if (!arg.empty() && arg[0] == '-')
+      throw UsageError{"unknown option '" + arg + "'"};
+    else if (cmd.scene.empty())
+      cmd.scene = arg;
+    else
+      throw UsageError{"unexpected argument '" + arg + "'"};
   }
   if (cmd.scene.empty()) throw UsageError{"missing SCENE file"};
   if (cmd.verb == "mc" && cmd.realizations == 0) throw UsageError{"mc needs --realizations N"};
@@ -117,17 +127,18 @@ int run(const Command& cmd) {
   options.threads = cmd.threads;
   options.on_step = [&](const rockdd::StepReport& r, const rockdd::Model&) { progress(r); };
   const rockdd::RunResult result = sim.run(options);
-  const auto out_dir = (options.out_root.empty() ? scene.output.dir : options.out_root) / scene.name;
+  const auto out_dir =
+      (options.out_root.empty() ? scene.output.dir : options.out_root) / scene.name;
   if (!result.ok) {
-    std::cerr << "rockdd: run failed: " << result.reason << "\n  outputs so far in " << out_dir.string()
-              << "\n";
+    std::cerr << "rockdd: run failed: " << result.reason << "\n  outputs so far in "
+              << out_dir.string() << "\n";
     return 1;
   }
   if (!cmd.quiet)
-    std::cerr << "rockdd: ok: " << result.summary["steps"] << " steps, " << result.summary["elements"]
-              << " elements, " << result.summary["blocks"] << " blocks, "
-              << result.summary["wall_seconds"].get<double>() << " s; outputs in " << out_dir.string()
-              << "\n";
+    std::cerr << "rockdd: ok: " << result.summary["steps"] << " steps, "
+              << result.summary["elements"] << " elements, " << result.summary["blocks"]
+              << " blocks, " << result.summary["wall_seconds"].get<double>() << " s; outputs in "
+              << out_dir.string() << "\n";
   return 0;
 }
 
@@ -140,11 +151,13 @@ int check(const Command& cmd) {
             << "\nblocks: " << model.num_blocks << "\nbodies:";
   for (const auto& b : model.sets.bodies) std::cout << " '" << b << "'";
   std::cout << "\ncurves:";
-  for (const auto& [name, edges] : model.sets.curve_edges) std::cout << ' ' << name << '(' << edges.size() / 2 << ')';
+  for (const auto& [name, edges] : model.sets.curve_edges)
+    std::cout << ' ' << name << '(' << edges.size() / 2 << ')';
   std::cout << "\npoints:";
   for (const auto& [name, nodes] : model.sets.points) std::cout << ' ' << name;
   std::cout << "\ndefaults:\n";
-  for (const auto& [key, value] : scene.defaults) std::cout << "  " << key << " = " << value << '\n';
+  for (const auto& [key, value] : scene.defaults)
+    std::cout << "  " << key << " = " << value << '\n';
   return 0;
 }
 

@@ -25,7 +25,8 @@ void assemble_stiffness(const Model& model, const ElementColoring& coloring,
             kernels::elasticity_matrix(damaged_young(model.young[e], model.damage[e]),
                                        model.poisson[e], plane, d);
             kernels::cst_stiffness(xy, d, t, k);
-            const std::int32_t* to = &layout.scatter[static_cast<std::size_t>(e) * kElementUpperEntries];
+            const std::int32_t* to =
+                &layout.scatter[static_cast<std::size_t>(e) * kElementUpperEntries];
             for (int a = 0; a < 6; ++a)
               for (int b = a; b < 6; ++b, ++to)
                 if (*to >= 0) values[*to] += k[6 * a + b];

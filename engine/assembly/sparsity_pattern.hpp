@@ -9,8 +9,8 @@ namespace rockdd {
 /// diagonal present in every column. Values live elsewhere, in the same order as row_idx.
 struct SparsityPattern {
   std::int32_t n = 0;
-  std::vector<std::int32_t> col_ptr;               // n + 1
-  std::vector<std::int32_t> row_idx;               // col_ptr[n]
+  std::vector<std::int32_t> col_ptr;  // n + 1
+  std::vector<std::int32_t> row_idx;  // col_ptr[n]
   std::int64_t nnz() const { return col_ptr.empty() ? 0 : col_ptr.back(); }
 };
 

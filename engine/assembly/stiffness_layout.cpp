@@ -92,7 +92,8 @@ StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::
           const std::int32_t row = std::min(eq[a], eq[b]), col = std::max(eq[a], eq[b]);
           const auto first = p.row_idx.begin() + p.col_ptr[col];
           const auto last = p.row_idx.begin() + p.col_ptr[col + 1];
-          *out++ = static_cast<std::int32_t>(std::lower_bound(first, last, row) - p.row_idx.begin());
+          *out++ =
+              static_cast<std::int32_t>(std::lower_bound(first, last, row) - p.row_idx.begin());
         }
     }
   });

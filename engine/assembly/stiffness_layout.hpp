@@ -15,8 +15,8 @@ inline constexpr int kElementUpperEntries = 21;
 /// Pattern, scatter map and diagonal positions of the global stiffness.
 struct StiffnessLayout {
   SparsityPattern pattern;
-  std::vector<std::int32_t> scatter;               // 21 per element; value index or -1
-  std::vector<std::int32_t> diagonal;              // per equation: value index of (i, i)
+  std::vector<std::int32_t> scatter;   // 21 per element; value index or -1
+  std::vector<std::int32_t> diagonal;  // per equation: value index of (i, i)
 };
 
 /// Builds the layout for elements `conn` over `num_nodes` nodes, where `equation[dof]` is the

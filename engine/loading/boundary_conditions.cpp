@@ -16,8 +16,8 @@ BoundaryConditions build_boundary_conditions(const Scene& scene, const Model& mo
   bc.velocity.assign(num_dofs, 0.0);
   for (std::size_t i = 0; i < scene.boundaries.size(); ++i) {
     const BoundarySpec& b = scene.boundaries[i];
-    const auto nodes = nodes_named(model, b.on, scene.file.string(),
-                                   "boundary[" + std::to_string(i) + "].on");
+    const auto nodes =
+        nodes_named(model, b.on, scene.file.string(), "boundary[" + std::to_string(i) + "].on");
     for (const std::int32_t n : nodes) {
       const bool fix[2] = {b.fix_x, b.fix_y};
       const std::optional<double> vel[2] = {b.velocity_x, b.velocity_y};
@@ -47,22 +47,30 @@ void check_static_restraint(const Scene& scene, const Model& model, const Bounda
   }
   for (std::size_t b = 0; b < num_blocks; ++b) centroid[b] /= std::max(count[b], 1.0);
   for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
-    const Eigen::Vector2d r = Eigen::Vector2d(model.X[2 * n], model.X[2 * n + 1]) - centroid[model.node_block[n]];
+    const Eigen::Vector2d r =
+        Eigen::Vector2d(model.X[2 * n], model.X[2 * n + 1]) - centroid[model.node_block[n]];
     size[model.node_block[n]] = std::max(size[model.node_block[n]], r.norm());
   }
   std::vector<Eigen::Matrix3d> g(num_blocks, Eigen::Matrix3d::Zero());
   for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
     const std::int32_t b = model.node_block[n];
     const double L = std::max(size[b], 1e-300);
-    const double dx = (model.X[2 * n] - centroid[b].x()) / L, dy = (model.X[2 * n + 1] - centroid[b].y()) / L;
-    if (bc.prescribed[2 * n]) { Eigen::Vector3d r(1, 0, -dy); g[b] += r * r.transpose(); }
-    if (bc.prescribed[2 * n + 1]) { Eigen::Vector3d r(0, 1, dx); g[b] += r * r.transpose(); }
+    const double dx = (model.X[2 * n] - centroid[b].x()) / L,
+                 dy = (model.X[2 * n + 1] - centroid[b].y()) / L;
+    if (bc.prescribed[2 * n]) {
+      Eigen::Vector3d r(1, 0, -dy);
+      g[b] += r * r.transpose();
+    }
+    if (bc.prescribed[2 * n + 1]) {
+      Eigen::Vector3d r(0, 1, dx);
+      g[b] += r * r.transpose();
+    }
   }
   for (std::size_t b = 0; b < num_blocks; ++b) {
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(g[b]);
     if (eig.eigenvalues()(0) > 1e-10) continue;
     const Eigen::Vector3d mode = eig.eigenvectors().col(0);
-    std::string free_motion = std::abs(mode(2)) > 0.5 ? "rotation"
+    std::string free_motion = std::abs(mode(2)) > 0.5                  ? "rotation"
                               : std::abs(mode(0)) >= std::abs(mode(1)) ? "x translation"
                                                                        : "y translation";
     std::string body;
@@ -72,8 +80,8 @@ void check_static_restraint(const Scene& scene, const Model& model, const Bounda
         break;
       }
     throw InputError(scene.file.string(), "boundary",
-                     "static analysis needs every block restrained, but block " + std::to_string(b) +
-                         " (body '" + body + "') is free in " + free_motion +
+                     "static analysis needs every block restrained, but block " +
+                         std::to_string(b) + " (body '" + body + "') is free in " + free_motion +
                          ": add [[boundary]] constraints or use analysis = \"quasi-static\"");
   }
 }

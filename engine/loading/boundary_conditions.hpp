@@ -11,9 +11,9 @@ namespace rockdd {
 
 /// Per-dof constraint data (2 dofs per node).
 struct BoundaryConditions {
-  std::vector<std::uint8_t> prescribed;            // 1 when the dof is fixed or moving
-  std::vector<double> velocity;                    // imposed velocity (0 for fixed dofs)
-  std::vector<std::int32_t> equation;              // equation of a free dof, -1 if prescribed
+  std::vector<std::uint8_t> prescribed;  // 1 when the dof is fixed or moving
+  std::vector<double> velocity;          // imposed velocity (0 for fixed dofs)
+  std::vector<std::int32_t> equation;    // equation of a free dof, -1 if prescribed
   std::int32_t num_equations = 0;
 };
 

@@ -54,7 +54,10 @@ void add_pressure(const Model& model, const std::string& name, double p, const s
     double nx = -ty, ny = tx;  // |n| = edge length
     const double to_third_x = model.X[2 * third] - model.X[2 * a];
     const double to_third_y = model.X[2 * third + 1] - model.X[2 * a + 1];
-    if (nx * to_third_x + ny * to_third_y < 0.0) { nx = -nx; ny = -ny; }
+    if (nx * to_third_x + ny * to_third_y < 0.0) {
+      nx = -nx;
+      ny = -ny;
+    }
     for (const std::int32_t n : {a, b}) {
       f[2 * n] += 0.5 * p * model.thickness * nx;
       f[2 * n + 1] += 0.5 * p * model.thickness * ny;

@@ -25,8 +25,8 @@ std::vector<std::int32_t> nodes_named(const Model& model, const std::string& nam
     nodes = p->second;
   } else {
     throw InputError(scene_file, key,
-                     "no physical curve or point named '" + name + "' in the mesh (available: " +
-                         available_names(model) + ")");
+                     "no physical curve or point named '" + name +
+                         "' in the mesh (available: " + available_names(model) + ")");
   }
   std::sort(nodes.begin(), nodes.end());
   nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());

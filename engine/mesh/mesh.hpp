@@ -17,12 +17,12 @@ namespace rockdd {
 /// Curve edges run along triangle sides, a boundary edge counter-clockwise around its triangle
 /// (material on its left); point node lists are sorted.
 struct Mesh {
-  std::vector<double> xy;                          // 2 per node
-  std::vector<std::int32_t> triangles;             // 3 per element, counter-clockwise
-  std::vector<std::int32_t> element_surface;       // per element: index into surface_body
-  std::vector<std::string> surface_body;           // per Gmsh surface entity: physical name or ""
+  std::vector<double> xy;                     // 2 per node
+  std::vector<std::int32_t> triangles;        // 3 per element, counter-clockwise
+  std::vector<std::int32_t> element_surface;  // per element: index into surface_body
+  std::vector<std::string> surface_body;      // per Gmsh surface entity: physical name or ""
   std::map<std::string, std::vector<std::array<std::int32_t, 2>>> curves;  // physical curve → edges
-  std::map<std::string, std::vector<std::int32_t>> points;                  // physical point → nodes
+  std::map<std::string, std::vector<std::int32_t>> points;  // physical point → nodes
   std::size_t num_nodes() const { return xy.size() / 2; }
   std::size_t num_elements() const { return triangles.size() / 3; }
 };

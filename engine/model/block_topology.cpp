@@ -20,7 +20,10 @@ struct DisjointSets {
     a = find(a);
     b = find(b);
     if (a == b) return;
-    if (a < b) parent[b] = a; else parent[a] = b;
+    if (a < b)
+      parent[b] = a;
+    else
+      parent[a] = b;
   }
 };
 
@@ -31,7 +34,8 @@ bool binds(const EdgeAdjacency& adj, std::span<const std::uint8_t> intact, std::
 }  // namespace
 
 BlockTopology form_blocks(std::span<const std::int32_t> conn, std::int32_t num_nodes,
-                          const EdgeAdjacency& adjacency, std::span<const std::uint8_t> edge_intact) {
+                          const EdgeAdjacency& adjacency,
+                          std::span<const std::uint8_t> edge_intact) {
   const auto num_elements = static_cast<std::int32_t>(conn.size() / 3);
   BlockTopology topo;
 
@@ -86,14 +90,16 @@ BlockTopology form_blocks(std::span<const std::int32_t> conn, std::int32_t num_n
         if (local_group[r] < 0) local_group[r] = groups++;
         const std::int32_t e = inc.element[begin + i];
         for (int c = 0; c < 3; ++c)
-          if (conn[3 * e + c] == n) group_of_slot[3 * static_cast<std::size_t>(e) + c] = local_group[r];
+          if (conn[3 * e + c] == n)
+            group_of_slot[3 * static_cast<std::size_t>(e) + c] = local_group[r];
       }
       extra_groups[n] = groups - 1;
     }
   });
 
   std::vector<std::int32_t> first_extra(static_cast<std::size_t>(num_nodes) + 1, num_nodes);
-  for (std::int32_t n = 0; n < num_nodes; ++n) first_extra[n + 1] = first_extra[n] + extra_groups[n];
+  for (std::int32_t n = 0; n < num_nodes; ++n)
+    first_extra[n + 1] = first_extra[n] + extra_groups[n];
   const std::int32_t total_nodes = first_extra[num_nodes];
   topo.node_origin.resize(static_cast<std::size_t>(total_nodes));
   std::iota(topo.node_origin.begin(), topo.node_origin.begin() + num_nodes, 0);

@@ -11,8 +11,8 @@ namespace rockdd {
 
 /// Connectivity with split nodes, and the block of each element.
 struct BlockTopology {
-  std::vector<std::int32_t> conn;                  // 3 per element, split node ids
-  std::vector<std::int32_t> node_origin;           // new node -> node it came from
+  std::vector<std::int32_t> conn;         // 3 per element, split node ids
+  std::vector<std::int32_t> node_origin;  // new node -> node it came from
   std::vector<std::int32_t> element_block;
   std::int32_t num_blocks = 0;
 };
@@ -23,6 +23,7 @@ struct BlockTopology {
 /// ids after the existing ones, in node order, so the result does not depend on threads.
 /// `edge_intact[3e+k]` says whether edge k of element e still binds it to its neighbour.
 BlockTopology form_blocks(std::span<const std::int32_t> conn, std::int32_t num_nodes,
-                          const EdgeAdjacency& adjacency, std::span<const std::uint8_t> edge_intact);
+                          const EdgeAdjacency& adjacency,
+                          std::span<const std::uint8_t> edge_intact);
 
 }  // namespace rockdd

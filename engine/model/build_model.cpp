@@ -19,15 +19,16 @@ std::string join_names(const std::vector<std::string>& names) {
 }
 
 /// Material index of each body: an exact body match first, else the "*" material.
-std::vector<std::int32_t> material_of_bodies(const Scene& scene, const std::vector<std::string>& bodies,
+std::vector<std::int32_t> material_of_bodies(const Scene& scene,
+                                             const std::vector<std::string>& bodies,
                                              const std::vector<std::int32_t>& elements_per_body) {
   const std::string where = scene.file.string();
   for (std::size_t m = 0; m < scene.materials.size(); ++m) {
     const std::string& body = scene.materials[m].body;
     if (body != "*" && std::find(bodies.begin(), bodies.end(), body) == bodies.end())
       throw InputError(where, "material[" + std::to_string(m) + "].body",
-                       "no physical surface named '" + body + "' in the mesh (available: " +
-                           join_names(bodies) + ")");
+                       "no physical surface named '" + body +
+                           "' in the mesh (available: " + join_names(bodies) + ")");
   }
   std::vector<std::int32_t> material(bodies.size(), -1);
   for (std::size_t b = 0; b < bodies.size(); ++b) {
@@ -140,9 +141,10 @@ Model build_model(const Scene& scene, const Mesh& mesh) {
     for (const auto& edge : edges) {
       const auto it = slot_of_edge.find(std::minmax(edge[0], edge[1]));
       if (it == slot_of_edge.end())
-        throw InputError(where, "mesh", "physical curve '" + name + "' has an edge (nodes " +
-                                            std::to_string(edge[0]) + ", " + std::to_string(edge[1]) +
-                                            ") that is not a side of any triangle");
+        throw InputError(where, "mesh",
+                         "physical curve '" + name + "' has an edge (nodes " +
+                             std::to_string(edge[0]) + ", " + std::to_string(edge[1]) +
+                             ") that is not a side of any triangle");
       const std::int32_t e = it->second / 3, k = it->second % 3;
       out_edges.push_back(model.conn[3 * e + k]);
       out_edges.push_back(model.conn[3 * e + (k + 1) % 3]);

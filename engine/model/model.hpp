@@ -13,10 +13,10 @@ namespace rockdd {
 
 /// Named parts of the model after blocks were formed and nodes split.
 struct NamedSets {
-  std::map<std::string, std::vector<std::int32_t>> curve_edges;   // 2 node ids per edge
+  std::map<std::string, std::vector<std::int32_t>> curve_edges;         // 2 node ids per edge
   std::map<std::string, std::vector<std::int32_t>> curve_edge_element;  // element owning each edge
-  std::map<std::string, std::vector<std::int32_t>> points;        // node ids (all split copies)
-  std::vector<std::string> bodies;                                // body names (index = body id)
+  std::map<std::string, std::vector<std::int32_t>> points;  // node ids (all split copies)
+  std::vector<std::string> bodies;                          // body names (index = body id)
 };
 
 /// Nodes, elements, blocks and materials of one simulation.
@@ -25,24 +25,24 @@ struct Model {
   double thickness = 1.0;
 
   // Nodes.
-  std::vector<double> X;                           // reference position
-  std::vector<double> u;                           // displacement
-  std::vector<double> v;                           // velocity
-  std::vector<double> node_mass;                   // lumped mass (kg), one per node
+  std::vector<double> X;          // reference position
+  std::vector<double> u;          // displacement
+  std::vector<double> v;          // velocity
+  std::vector<double> node_mass;  // lumped mass (kg), one per node
   std::vector<std::int32_t> node_block;
 
   // Elements (CST, counter-clockwise).
-  std::vector<std::int32_t> conn;                  // 3 per element
-  std::vector<std::int32_t> element_material;      // index into materials
-  std::vector<std::int32_t> element_body;          // index into sets.bodies
+  std::vector<std::int32_t> conn;              // 3 per element
+  std::vector<std::int32_t> element_material;  // index into materials
+  std::vector<std::int32_t> element_body;      // index into sets.bodies
   std::vector<std::int32_t> element_block;
-  std::vector<double> young;                       // undamaged E0 of each element
+  std::vector<double> young;  // undamaged E0 of each element
   std::vector<double> poisson;
   std::vector<double> density;
-  std::vector<double> area0;                       // reference area
-  std::vector<double> damage;                      // w in [0, 1]
-  std::vector<double> strain;                      // 3 per element: exx, eyy, gxy
-  std::vector<double> stress;                      // 3 per element: sxx, syy, sxy
+  std::vector<double> area0;   // reference area
+  std::vector<double> damage;  // w in [0, 1]
+  std::vector<double> strain;  // 3 per element: exx, eyy, gxy
+  std::vector<double> stress;  // 3 per element: sxx, syy, sxy
 
   std::int32_t num_blocks = 0;
   std::vector<MaterialSpec> materials;

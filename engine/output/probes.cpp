@@ -9,8 +9,8 @@
 
 #include "engine/errors.hpp"
 #include "engine/loading/named_nodes.hpp"
-#include "engine/output/atomic_file.hpp"
 #include "engine/number_format.hpp"
+#include "engine/output/atomic_file.hpp"
 #include "kernels/cst.hpp"
 #include "kernels/principal.hpp"
 
@@ -23,10 +23,13 @@ struct CentroidCloud {
   std::size_t kdtree_get_point_count() const { return xy.size() / 2; }
   double kdtree_get_pt(std::size_t i, std::size_t dim) const { return xy[2 * i + dim]; }
   template <class Box>
-  bool kdtree_get_bbox(Box&) const { return false; }
+  bool kdtree_get_bbox(Box&) const {
+    return false;
+  }
 };
-using CentroidTree = nanoflann::KDTreeSingleIndexAdaptor<
-    nanoflann::L2_Simple_Adaptor<double, CentroidCloud>, CentroidCloud, 2, std::size_t>;
+using CentroidTree =
+    nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, CentroidCloud>,
+                                        CentroidCloud, 2, std::size_t>;
 
 /// Barycentric coordinates of (x, y) in element e of the reference mesh.
 void barycentric(const Model& model, std::int32_t e, double x, double y, double w[3]) {
@@ -49,8 +52,10 @@ std::vector<LineSample> locate_line_samples(const Model& model, const ProbeSpec&
   cloud.xy.resize(2 * static_cast<std::size_t>(model.num_elements()));
   for (std::int32_t e = 0; e < model.num_elements(); ++e)
     for (int d = 0; d < 2; ++d)
-      cloud.xy[2 * e + d] = (model.X[2 * model.conn[3 * e] + d] + model.X[2 * model.conn[3 * e + 1] + d] +
-                             model.X[2 * model.conn[3 * e + 2] + d]) / 3.0;
+      cloud.xy[2 * e + d] =
+          (model.X[2 * model.conn[3 * e] + d] + model.X[2 * model.conn[3 * e + 1] + d] +
+           model.X[2 * model.conn[3 * e + 2] + d]) /
+          3.0;
   CentroidTree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
 
@@ -112,7 +117,10 @@ Probes::Probes(const Scene& scene, const Model& model) {
         double best_d = INFINITY;
         for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
           const double d = std::hypot(model.X[2 * n] - spec.at[0], model.X[2 * n + 1] - spec.at[1]);
-          if (d < best_d) { best_d = d; best = n; }
+          if (d < best_d) {
+            best_d = d;
+            best = n;
+          }
         }
         r.nodes = {best};
         break;
@@ -157,7 +165,8 @@ bool Probes::has_line_probes() const {
                      [](const Resolved& r) { return r.spec->kind == ProbeSpec::Kind::line; });
 }
 
-void Probes::evaluate(const Model& model, std::span<const double> reaction, std::vector<double>& row) {
+void Probes::evaluate(const Model& model, std::span<const double> reaction,
+                      std::vector<double>& row) {
   for (Resolved& r : probes_) {
     const ProbeSpec& spec = *r.spec;
     if (spec.kind == ProbeSpec::Kind::line) continue;
@@ -173,7 +182,10 @@ void Probes::evaluate(const Model& model, std::span<const double> reaction, std:
       fx += reaction[2 * n];
       fy += reaction[2 * n + 1];
     }
-    ux /= w_sum; uy /= w_sum; vx /= w_sum; vy /= w_sum;
+    ux /= w_sum;
+    uy /= w_sum;
+    vx /= w_sum;
+    vy /= w_sum;
     double rotation = 0, area = 0, kinetic = 0;
     if (spec.kind == ProbeSpec::Kind::body) {
       // Best-fit rigid rotation of the body (2D Procrustes), unwrapped against the last value.
@@ -185,7 +197,8 @@ void Probes::evaluate(const Model& model, std::span<const double> reaction, std:
         const double qx = px + model.u[2 * n] - ux, qy = py + model.u[2 * n + 1] - uy;
         dot += m * (px * qx + py * qy);
         cross += m * (px * qy - py * qx);
-        kinetic += 0.5 * m * (model.v[2 * n] * model.v[2 * n] + model.v[2 * n + 1] * model.v[2 * n + 1]);
+        kinetic +=
+            0.5 * m * (model.v[2 * n] * model.v[2 * n] + model.v[2 * n + 1] * model.v[2 * n + 1]);
       }
       const double angle = std::atan2(cross, dot);
       const double two_pi = 2.0 * std::numbers::pi;
@@ -205,15 +218,24 @@ void Probes::evaluate(const Model& model, std::span<const double> reaction, std:
     }
     for (const auto& field : spec.fields) {
       double value = 0.0;
-      if (field == "ux") value = ux;
-      else if (field == "uy") value = uy;
-      else if (field == "vx") value = vx;
-      else if (field == "vy") value = vy;
-      else if (field == "fx") value = fx;
-      else if (field == "fy") value = fy;
-      else if (field == "rotation") value = rotation;
-      else if (field == "area") value = area;
-      else if (field == "kinetic") value = kinetic;
+      if (field == "ux")
+        value = ux;
+      else if (field == "uy")
+        value = uy;
+      else if (field == "vx")
+        value = vx;
+      else if (field == "vy")
+        value = vy;
+      else if (field == "fx")
+        value = fx;
+      else if (field == "fy")
+        value = fy;
+      else if (field == "rotation")
+        value = rotation;
+      else if (field == "area")
+        value = area;
+      else if (field == "kinetic")
+        value = kinetic;
       row.push_back(value);
     }
   }
@@ -241,21 +263,29 @@ void Probes::write_profiles(const Model& model, const std::filesystem::path& dir
           sig[c] = model.stress[3 * static_cast<std::size_t>(s.element) + c];
           continue;
         }
-        for (int k = 0; k < 3; ++k) sig[c] += s.bary[k] * at_nodes[3 * model.conn[3 * s.element + k] + c];
+        for (int k = 0; k < 3; ++k)
+          sig[c] += s.bary[k] * at_nodes[3 * model.conn[3 * s.element + k] + c];
       }
       double s1 = 0, s2 = 0;
       kernels::principal_values(sig[0], sig[1], sig[2], s1, s2);
       for (const auto& field : spec.fields) {
         double value = 0.0;
-        if (field == "sxx") value = sig[0];
-        else if (field == "syy") value = sig[1];
-        else if (field == "sxy") value = sig[2];
-        else if (field == "s1") value = s1;
-        else if (field == "s2") value = s2;
-        else if (field == "damage") value = model.damage[s.element];
+        if (field == "sxx")
+          value = sig[0];
+        else if (field == "syy")
+          value = sig[1];
+        else if (field == "sxy")
+          value = sig[2];
+        else if (field == "s1")
+          value = s1;
+        else if (field == "s2")
+          value = s2;
+        else if (field == "damage")
+          value = model.damage[s.element];
         else if (field == "ux" || field == "uy") {
           const int d = field == "ux" ? 0 : 1;
-          for (int k = 0; k < 3; ++k) value += s.bary[k] * model.u[2 * model.conn[3 * s.element + k] + d];
+          for (int k = 0; k < 3; ++k)
+            value += s.bary[k] * model.u[2 * model.conn[3 * s.element + k] + d];
         }
         out << ',' << format_number(value);
       }

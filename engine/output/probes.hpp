@@ -13,9 +13,9 @@ namespace rockdd {
 
 /// A line-probe sample: where it lies in the reference mesh.
 struct LineSample {
-  double s = 0.0, x = 0.0, y = 0.0;                // distance along the segment, position
+  double s = 0.0, x = 0.0, y = 0.0;  // distance along the segment, position
   std::int32_t element = -1;
-  double bary[3] = {0.0, 0.0, 0.0};                // barycentric weights of the element's nodes
+  double bary[3] = {0.0, 0.0, 0.0};  // barycentric weights of the element's nodes
 };
 
 /// Probes resolved against one model: nodes, bodies and line samples found once at t = 0.
@@ -38,12 +38,12 @@ class Probes {
  private:
   struct Resolved {
     const ProbeSpec* spec;
-    std::vector<std::int32_t> nodes;               // point: 1 node; curve/body: its nodes
-    std::vector<LineSample> samples;               // line, located on first use
+    std::vector<std::int32_t> nodes;  // point: 1 node; curve/body: its nodes
+    std::vector<LineSample> samples;  // line, located on first use
     bool located = false;
-    std::vector<double> ref_centered;              // body: reference positions minus centroid
-    double rotation = 0.0;                         // body: cumulative rotation (rad)
-    std::int32_t body = -1;                        // body: index, -1 = every body
+    std::vector<double> ref_centered;  // body: reference positions minus centroid
+    double rotation = 0.0;             // body: cumulative rotation (rad)
+    std::int32_t body = -1;            // body: index, -1 = every body
   };
   std::vector<Resolved> probes_;
   std::vector<std::string> columns_;

@@ -52,7 +52,9 @@ void RunOutputs::frame(const Model& model, long step, double time) {
     }
     return out;
   };
-  auto wants = [&](const char* f) { return std::find(fields_.begin(), fields_.end(), f) != fields_.end(); };
+  auto wants = [&](const char* f) {
+    return std::find(fields_.begin(), fields_.end(), f) != fields_.end();
+  };
   std::vector<double> displacement, velocity, principal;
   std::vector<VtuArray> point_data, cell_data;
   if (wants("displacement")) {
@@ -68,8 +70,8 @@ void RunOutputs::frame(const Model& model, long step, double time) {
   if (wants("principal") || wants("stress")) {
     principal.resize(2 * num_elements);
     for (std::size_t e = 0; e < num_elements; ++e)
-      kernels::principal_values(model.stress[3 * e], model.stress[3 * e + 1], model.stress[3 * e + 2],
-                                principal[2 * e], principal[2 * e + 1]);
+      kernels::principal_values(model.stress[3 * e], model.stress[3 * e + 1],
+                                model.stress[3 * e + 2], principal[2 * e], principal[2 * e + 1]);
     cell_data.push_back({"principal", 2, principal, {}});
   }
   if (wants("damage")) cell_data.push_back({"damage", 1, model.damage, {}});

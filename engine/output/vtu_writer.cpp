@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "engine/output/atomic_file.hpp"
 #include "engine/number_format.hpp"
+#include "engine/output/atomic_file.hpp"
 
 namespace rockdd {
 namespace {

@@ -13,7 +13,7 @@ namespace rockdd {
 struct VtuArray {
   std::string name;
   int components = 1;
-  std::span<const double> float64;                 // set exactly one of float64 / int32
+  std::span<const double> float64;  // set exactly one of float64 / int32
   std::span<const std::int32_t> int32;
 };
 

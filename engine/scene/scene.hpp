@@ -20,12 +20,12 @@ using Vec2 = std::array<double, 2>;
 
 /// [time]: first dt, end time or step count, and step control.
 struct TimeSpec {
-  double dt = 1.0;                                 // s (1 in a static scene without [time])
-  std::optional<double> end;                       // s; exactly one of end / steps is set
-  std::optional<int> steps;                        // number of steps
-  double dt_min = 0.0;                             // s; 0 = dt * 1e-6 (default chosen)
-  std::optional<double> max_step_displacement;     // m
-  double dt_max = 0.0;                             // s; default = dt
+  double dt = 1.0;                              // s (1 in a static scene without [time])
+  std::optional<double> end;                    // s; exactly one of end / steps is set
+  std::optional<int> steps;                     // number of steps
+  double dt_min = 0.0;                          // s; 0 = dt * 1e-6 (default chosen)
+  std::optional<double> max_step_displacement;  // m
+  double dt_max = 0.0;                          // s; default = dt
   Integrator integrator = Integrator::dda;
 };
 
@@ -33,13 +33,13 @@ struct TimeSpec {
 struct MeshSpec {
   enum class Kind { geo, msh, rectangle, disk };
   Kind kind = Kind::rectangle;
-  std::filesystem::path file;                      // geo / msh, absolute (resolved from the scene)
-  std::optional<double> element_size;              // m, caps the mesh size
-  Vec2 size{1.0, 1.0};                             // rectangle
-  Vec2 origin{0.0, 0.0};                           // rectangle lower-left corner; disk centre
-  std::array<int, 2> divisions{10, 10};            // rectangle (structured, two triangles a cell)
-  double radius = 0.0;                             // disk
-  double flat_half_angle_deg = 0.0;                // disk (0 = round)
+  std::filesystem::path file;            // geo / msh, absolute (resolved from the scene)
+  std::optional<double> element_size;    // m, caps the mesh size
+  Vec2 size{1.0, 1.0};                   // rectangle
+  Vec2 origin{0.0, 0.0};                 // rectangle lower-left corner; disk centre
+  std::array<int, 2> divisions{10, 10};  // rectangle (structured, two triangles a cell)
+  double radius = 0.0;                   // disk
+  double flat_half_angle_deg = 0.0;      // disk (0 = round)
 };
 
 /// [[material]]: elastic, damage and heterogeneity parameters of one body (or "*").
@@ -51,13 +51,13 @@ struct MaterialSpec {
   std::optional<double> tensile_strength;
   std::optional<double> cohesion;
   std::optional<double> compressive_strength;
-  std::optional<double> friction_angle;            // deg
-  double residual = 0.1;                           // lambda
-  double ultimate_strain = 5.0;                    // eta
+  std::optional<double> friction_angle;  // deg
+  double residual = 0.1;                 // lambda
+  double ultimate_strain = 5.0;          // eta
   TensionOnset tension_onset = TensionOnset::stress;
   double detach_at_damage = 0.0;
-  std::optional<double> homogeneity;               // Weibull m
-  std::vector<std::string> heterogeneous;          // "young", "tensile_strength", ...
+  std::optional<double> homogeneity;       // Weibull m
+  std::vector<std::string> heterogeneous;  // "young", "tensile_strength", ...
   std::uint64_t seed = 0;
   bool weibull_size_scaling = false;
   bool has_damage() const { return tensile_strength || cohesion || compressive_strength; }
@@ -84,16 +84,16 @@ struct JointSpec {
 struct BoundarySpec {
   std::string on;
   bool fix_x = false, fix_y = false;
-  std::optional<double> velocity_x, velocity_y;    // m/s; `velocity = [..]` sets both
+  std::optional<double> velocity_x, velocity_y;  // m/s; `velocity = [..]` sets both
 };
 
 /// [[load]]: point/line force, pressure, or body force density.
 struct LoadSpec {
-  std::string on;                                  // curve or point (force, pressure)
-  std::string body;                                // body (force_density)
-  std::optional<Vec2> force;                       // N total
-  std::optional<double> pressure;                  // Pa, positive pushes inward
-  std::optional<Vec2> force_density;               // N/m^3
+  std::string on;                     // curve or point (force, pressure)
+  std::string body;                   // body (force_density)
+  std::optional<Vec2> force;          // N total
+  std::optional<double> pressure;     // Pa, positive pushes inward
+  std::optional<Vec2> force_density;  // N/m^3
 };
 
 /// [[probe]]: a column group in history.csv, or a line profile.
@@ -101,12 +101,12 @@ struct ProbeSpec {
   enum class Kind { point, curve, body, line };
   std::string name;
   Kind kind = Kind::point;
-  Vec2 at{0.0, 0.0};                               // point
-  std::string on;                                  // curve
-  std::string body;                                // body
-  std::array<Vec2, 2> line{};                      // line
-  int samples = 101;                               // line
-  bool nodal_stress = false;                       // line: stress = "nodal" (recovered) sampling
+  Vec2 at{0.0, 0.0};           // point
+  std::string on;              // curve
+  std::string body;            // body
+  std::array<Vec2, 2> line{};  // line
+  int samples = 101;           // line
+  bool nodal_stress = false;   // line: stress = "nodal" (recovered) sampling
   std::vector<std::string> fields;
 };
 
@@ -114,19 +114,19 @@ struct ProbeSpec {
 struct OutputSpec {
   std::filesystem::path dir = "out";
   int every = 100;
-  std::vector<std::string> fields{"displacement", "velocity", "stress", "principal",
+  std::vector<std::string> fields{"displacement", "velocity", "stress",  "principal",
                                   "damage",       "block",    "material"};
 };
 
 /// The whole scene.
 struct Scene {
-  std::filesystem::path file;                      // the scene file, absolute
+  std::filesystem::path file;  // the scene file, absolute
   std::string name;
   Analysis analysis = Analysis::static_;
   PlaneMode plane = PlaneMode::stress;
   double thickness = 1.0;
   Vec2 gravity{0.0, 0.0};
-  bool has_time = false;                           // false: static scene without [time]
+  bool has_time = false;  // false: static scene without [time]
   TimeSpec time;
   MeshSpec mesh;
   std::vector<MaterialSpec> materials;

@@ -303,7 +303,8 @@ ProbeSpec read_probe(TableReader& t) {
     if (!sampling) t.record_default("stress", "element");
     probe.nodal_stress = sampling && *sampling == "nodal";
   } else if (t.has("stress")) {
-    t.fail("stress", "expected stress sampling only in a line probe, got one in a probe with " + kinds[0]);
+    t.fail("stress",
+           "expected stress sampling only in a line probe, got one in a probe with " + kinds[0]);
   } else if (t.has("samples")) {
     t.fail("samples", "expected samples only in a line probe, got one in a probe with " + kinds[0]);
   }

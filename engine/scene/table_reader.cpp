@@ -70,8 +70,8 @@ bool Range::contains(double x) const {
 std::string Range::text() const {
   const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
   if (has_lo && has_hi) {
-    return "in " + std::string(lo_closed ? "[" : "(") + format_number(lo) + ", " + format_number(hi) +
-           (hi_closed ? "]" : ")");
+    return "in " + std::string(lo_closed ? "[" : "(") + format_number(lo) + ", " +
+           format_number(hi) + (hi_closed ? "]" : ")");
   }
   if (has_lo) return (lo_closed ? ">= " : "> ") + format_number(lo);
   if (has_hi) return (hi_closed ? "<= " : "< ") + format_number(hi);

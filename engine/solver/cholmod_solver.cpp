@@ -99,10 +99,14 @@ struct CholmodSolver::State {
   }
 };
 
-CholmodSolver::CholmodSolver() : state_(std::make_unique<State>()) { keep_large_blocks_in_heap(); }
+CholmodSolver::CholmodSolver() : state_(std::make_unique<State>()) {
+  keep_large_blocks_in_heap();
+}
 CholmodSolver::~CholmodSolver() = default;
 
-bool CholmodSolver::analyzed() const { return state_->factor != nullptr; }
+bool CholmodSolver::analyzed() const {
+  return state_->factor != nullptr;
+}
 
 void CholmodSolver::analyze(const SparsityPattern& pattern) {
   State& s = *state_;
@@ -112,7 +116,8 @@ void CholmodSolver::analyze(const SparsityPattern& pattern) {
   s.point_matrix_at(nullptr);
   s.factor = cholmod_analyze(&s.matrix, &s.common);
   if (s.factor == nullptr || s.common.status < CHOLMOD_OK)
-    throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.common.status) + ")");
+    throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.common.status) +
+                             ")");
   // The analysis leaves the factorization's flop count in Common->fl.
   s.blas_threads = s.common.fl > kParallelBlasFlops ? openblas_get_num_threads() : 1;
   ++stats_.analyses;
@@ -126,7 +131,8 @@ void CholmodSolver::factorize(const double* values) {
   s.point_matrix_at(const_cast<double*>(values));  // CHOLMOD only reads A
   const auto start = std::chrono::steady_clock::now();
   cholmod_factorize(&s.matrix, s.factor, &s.common);
-  stats_.last_factor_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.last_factor_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   stats_.last_factor_flops = s.common.fl;
   ++stats_.factorizations;
   if (s.common.status == CHOLMOD_NOT_POSDEF) {
@@ -135,7 +141,8 @@ void CholmodSolver::factorize(const double* values) {
                      "): a body is unrestrained or an element has lost its stiffness");
   }
   if (s.common.status < CHOLMOD_OK)
-    throw RunFailure("CHOLMOD factorization failed (status " + std::to_string(s.common.status) + ")");
+    throw RunFailure("CHOLMOD factorization failed (status " + std::to_string(s.common.status) +
+                     ")");
 }
 
 void CholmodSolver::solve(const double* b, double* x) {
@@ -151,7 +158,8 @@ void CholmodSolver::solve(const double* b, double* x) {
   s.rhs.xtype = CHOLMOD_REAL;
   s.rhs.dtype = CHOLMOD_DOUBLE;
   // cholmod_solve2 reuses x and the workspaces across calls: no allocation per solve.
-  cholmod_solve2(CHOLMOD_A, s.factor, &s.rhs, nullptr, &s.x, nullptr, &s.y_work, &s.e_work, &s.common);
+  cholmod_solve2(CHOLMOD_A, s.factor, &s.rhs, nullptr, &s.x, nullptr, &s.y_work, &s.e_work,
+                 &s.common);
   if (s.x == nullptr || s.common.status < CHOLMOD_OK) throw RunFailure("CHOLMOD solve failed");
   const auto* solution = static_cast<const double*>(s.x->x);
   std::copy(solution, solution + n, x);

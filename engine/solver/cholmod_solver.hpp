@@ -13,7 +13,7 @@ struct SolverStats {
   std::int64_t analyses = 0;
   std::int64_t factorizations = 0;
   std::int64_t updates = 0;
-  double last_factor_flops = 0.0;                  // cholmod_common.fl of the last factorization
+  double last_factor_flops = 0.0;  // cholmod_common.fl of the last factorization
   double last_factor_seconds = 0.0;
 };
 

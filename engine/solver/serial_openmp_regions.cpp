@@ -9,9 +9,15 @@ thread_local bool inline_regions = false;
 
 }  // namespace
 
-SerialOpenMpRegions::SerialOpenMpRegions() : previous_(inline_regions) { inline_regions = true; }
-SerialOpenMpRegions::~SerialOpenMpRegions() { inline_regions = previous_; }
-bool SerialOpenMpRegions::active() { return inline_regions; }
+SerialOpenMpRegions::SerialOpenMpRegions() : previous_(inline_regions) {
+  inline_regions = true;
+}
+SerialOpenMpRegions::~SerialOpenMpRegions() {
+  inline_regions = previous_;
+}
+bool SerialOpenMpRegions::active() {
+  return inline_regions;
+}
 
 }  // namespace rockdd
 

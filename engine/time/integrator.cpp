@@ -16,9 +16,10 @@ InertiaTerms inertia_terms(Analysis analysis, Integrator integrator, double dt) 
   return terms;
 }
 
-void update_velocity(Analysis analysis, Integrator integrator, double dt, std::span<const double> du,
-                     std::span<const std::uint8_t> prescribed, std::span<const double> imposed_velocity,
-                     std::span<double> v, std::span<double> a) {
+void update_velocity(Analysis analysis, Integrator integrator, double dt,
+                     std::span<const double> du, std::span<const std::uint8_t> prescribed,
+                     std::span<const double> imposed_velocity, std::span<double> v,
+                     std::span<double> a) {
   for (std::size_t d = 0; d < du.size(); ++d) {
     if (prescribed[d]) {
       v[d] = imposed_velocity[d];

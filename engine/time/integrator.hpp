@@ -15,9 +15,9 @@ namespace rockdd {
 
 /// Coefficients of the effective system for one step.
 struct InertiaTerms {
-  double mass_coefficient = 0;                     // c
-  double velocity_coefficient = 0;                 // p
-  double acceleration_coefficient = 0;             // q
+  double mass_coefficient = 0;          // c
+  double velocity_coefficient = 0;      // p
+  double acceleration_coefficient = 0;  // q
 };
 
 /// The coefficients of `integrator` for a step of length dt in `analysis`.
@@ -25,8 +25,9 @@ InertiaTerms inertia_terms(Analysis analysis, Integrator integrator, double dt);
 
 /// Velocity (and acceleration) of free dofs after a step with increment du.
 /// Prescribed dofs take their imposed velocity and zero acceleration.
-void update_velocity(Analysis analysis, Integrator integrator, double dt, std::span<const double> du,
-                     std::span<const std::uint8_t> prescribed, std::span<const double> imposed_velocity,
-                     std::span<double> v, std::span<double> a);
+void update_velocity(Analysis analysis, Integrator integrator, double dt,
+                     std::span<const double> du, std::span<const std::uint8_t> prescribed,
+                     std::span<const double> imposed_velocity, std::span<double> v,
+                     std::span<double> a);
 
 }  // namespace rockdd
