@@ -10,13 +10,16 @@
 
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/internal_force.hpp"
+#include "engine/contact/contact_stage.hpp"
 #include "engine/errors.hpp"
 #include "engine/loading/external_loads.hpp"
 #include "engine/output/probes.hpp"
-#include "engine/time/integrator.hpp"
 
 namespace rockdd {
 namespace {
+
+/// Open-close iterations allowed in one step before it is redone with dt / 2.
+constexpr int kMaxOpenCloseIterations = 12;
 
 /// Run length: `end`, or `steps` x dt, or one step of 1 s in a static scene without [time].
 double end_time_of(const Scene& scene) {
@@ -46,13 +49,12 @@ Simulation::Simulation(Scene scene, Model model)
   probes_ = std::make_unique<Probes>(scene_, model_);
 
   coloring_ = color_elements(model_.conn, model_.num_nodes());
-  layout_ = build_stiffness_layout(model_.conn, model_.num_nodes(), bc_.equation);
-  values_.assign(static_cast<std::size_t>(layout_.pattern.nnz()), 0.0);
-  if (bc_.num_equations > 0) solver_.analyze(layout_.pattern);
+  if (!scene_.joints.empty()) contact_ = std::make_unique<ContactStage>(scene_, model_);
+  rebuild_layout();
 
   const std::size_t num_dofs = model_.X.size();
-  for (auto* field :
-       {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_, &u_trial_, &du_})
+  for (auto* field : {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_,
+                      &u_trial_, &du_, &f_contact_, &positions_})
     field->assign(num_dofs, 0.0);
   rhs_.assign(static_cast<std::size_t>(bc_.num_equations), 0.0);
   for (const InitialSpec& init : scene_.initial) {
@@ -84,22 +86,84 @@ Simulation::Simulation(Scene scene, Model model)
 
 Simulation::~Simulation() = default;
 
+void Simulation::rebuild_layout() {
+  std::vector<std::int32_t> conn = model_.conn;
+  if (contact_) {
+    const std::vector<std::int32_t> triples = contact_->triples();
+    conn.insert(conn.end(), triples.begin(), triples.end());
+  }
+  layout_ = build_stiffness_layout(conn, model_.num_nodes(), bc_.equation);
+  values_.assign(static_cast<std::size_t>(layout_.pattern.nnz()), 0.0);
+  if (contact_) base_values_.assign(values_.size(), 0.0);
+  if (bc_.num_equations > 0) solver_.analyze(layout_.pattern);
+  factorized_mass_coefficient_ = -1.0;  // the values must be assembled into the new pattern
+}
+
 void Simulation::prepare_system(double mass_coefficient) {
   if (mass_coefficient == factorized_mass_coefficient_ || bc_.num_equations == 0) return;
   {
     ScopedTimer timer(timers_.assembly);
-    assemble_stiffness(model_, coloring_, layout_, bc_.equation, mass_coefficient, values_);
+    assemble_stiffness(model_, coloring_, layout_, bc_.equation, mass_coefficient,
+                       contact_ ? std::span<double>(base_values_) : std::span<double>(values_));
   }
+  factorized_mass_coefficient_ = mass_coefficient;
+  if (contact_) return;  // factorized in every open-close iteration, with the springs
   ScopedTimer timer(timers_.factorization);
   solver_.factorize(values_.data());
-  factorized_mass_coefficient_ = mass_coefficient;
+}
+
+void Simulation::solve_iteration(long step, const InertiaTerms& inertia) {
+  const std::size_t num_dofs = model_.X.size();
+  if (contact_) {
+    {
+      ScopedTimer timer(timers_.contact);
+      std::copy(base_values_.begin(), base_values_.end(), values_.begin());
+      std::fill(f_contact_.begin(), f_contact_.end(), 0.0);
+      for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + u_trial_[d];
+      contact_->add_springs(positions_, layout_, model_.num_elements(), values_, f_contact_);
+    }
+    ScopedTimer timer(timers_.factorization);
+    if (bc_.num_equations > 0) solver_.factorize(values_.data());
+  }
+  for (std::size_t d = 0; d < num_dofs; ++d) {
+    const std::int32_t eq = bc_.equation[d];
+    if (eq < 0) continue;
+    const double m = model_.node_mass[d / 2];
+    rhs_[eq] = f_ext_[d] - f_int_[d] - f_contact_[d] +
+               m * (inertia.velocity_coefficient * model_.v[d] +
+                    inertia.acceleration_coefficient * acceleration_[d]);
+  }
+  if (bc_.num_equations > 0) {
+    ScopedTimer timer(timers_.solve);
+    solver_.solve(rhs_.data(), rhs_.data());
+  }
+  for (std::size_t d = 0; d < num_dofs; ++d) {
+    if (bc_.equation[d] >= 0) du_[d] = u_trial_[d] - model_.u[d] + rhs_[bc_.equation[d]];
+    if (!std::isfinite(du_[d])) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf,
+                    "step %ld: the displacement increment of node %zu is not finite "
+                    "(check stiffness contrasts, restraints and dt)",
+                    step, d / 2);
+      throw RunFailure(buf);
+    }
+  }
 }
 
 bool Simulation::attempt_step(long step, double dt, double load_factor, StepControl& control) {
   const InertiaTerms inertia = inertia_terms(scene_.analysis, scene_.time.integrator, dt);
+  const std::size_t num_dofs = model_.X.size();
+  if (contact_) {
+    bool changed = false;
+    {
+      ScopedTimer timer(timers_.contact);
+      for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + model_.u[d];
+      changed = contact_->detect(positions_);
+    }
+    if (changed) rebuild_layout();
+  }
   prepare_system(inertia.mass_coefficient);
 
-  const std::size_t num_dofs = model_.X.size();
   for (std::size_t d = 0; d < num_dofs; ++d) {
     du_[d] = bc_.prescribed[d] ? bc_.velocity[d] * dt : 0.0;
     u_trial_[d] = model_.u[d] + du_[d];
@@ -109,31 +173,33 @@ bool Simulation::attempt_step(long step, double dt, double load_factor, StepCont
     ScopedTimer timer(timers_.assembly);
     compute_internal_force(model_, coloring_, u_trial_, model_.strain, model_.stress, f_int_);
   }
-  for (std::size_t d = 0; d < num_dofs; ++d) {
-    const std::int32_t eq = bc_.equation[d];
-    if (eq < 0) continue;
-    const double m = model_.node_mass[d / 2];
-    rhs_[eq] = f_ext_[d] - f_int_[d] +
-               m * (inertia.velocity_coefficient * model_.v[d] +
-                    inertia.acceleration_coefficient * acceleration_[d]);
+  // The open-close iteration (a single solve without contacts): assume states, solve, check.
+  int iterations = 0;
+  while (true) {
+    ++iterations;
+    solve_iteration(step, inertia);
+    if (!contact_) break;
+    double penetration = 0.0;
+    int changes = 0;
+    {
+      ScopedTimer timer(timers_.contact);
+      for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + model_.u[d] + du_[d];
+      changes = contact_->update_states(positions_, penetration);
+    }
+    if (changes == 0) break;
+    if (iterations >= kMaxOpenCloseIterations) {
+      open_close_iterations_ += iterations;
+      control.reject(step, "the open-close iteration did not settle in " +
+                               std::to_string(kMaxOpenCloseIterations) + " iterations");
+      return false;
+    }
   }
-  if (bc_.num_equations > 0) {
-    ScopedTimer timer(timers_.solve);
-    solver_.solve(rhs_.data(), rhs_.data());
+  if (contact_) {
+    open_close_iterations_ += iterations;
+    max_open_close_ = std::max<long>(max_open_close_, iterations);
   }
   double largest = 0.0;
-  for (std::size_t d = 0; d < num_dofs; ++d) {
-    if (bc_.equation[d] >= 0) du_[d] = rhs_[bc_.equation[d]];
-    if (!std::isfinite(du_[d])) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf,
-                    "step %ld: the displacement increment of node %zu is not finite "
-                    "(check stiffness contrasts, restraints and dt)",
-                    step, d / 2);
-      throw RunFailure(buf);
-    }
-    largest = std::max(largest, std::abs(du_[d]));
-  }
+  for (std::size_t d = 0; d < num_dofs; ++d) largest = std::max(largest, std::abs(du_[d]));
   if (!control.displacement_ok(largest)) {
     char buf[160];
     std::snprintf(buf, sizeof buf,
@@ -153,10 +219,17 @@ void Simulation::commit_step(double dt) {
     ScopedTimer timer(timers_.assembly);
     compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, f_int_);
   }
+  if (contact_) {
+    ScopedTimer timer(timers_.contact);
+    for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + model_.u[d];
+    contact_->commit(positions_);
+    std::fill(f_contact_.begin(), f_contact_.end(), 0.0);
+    contact_->add_springs(positions_, layout_, model_.num_elements(), {}, f_contact_);
+  }
   // The constraints' force on the body, and the work of all external forces (trapezoidal).
   double work = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) {
-    reaction_[d] = bc_.prescribed[d] ? f_int_[d] - f_ext_[d] : 0.0;
+    reaction_[d] = bc_.prescribed[d] ? f_int_[d] + f_contact_[d] - f_ext_[d] : 0.0;
     work += 0.5 * (f_ext_old_[d] + reaction_old_[d] + f_ext_[d] + reaction_[d]) * du_[d];
   }
   external_work_ += work;
@@ -269,8 +342,8 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
   s["analysis"] = analysis_name(scene_.analysis);
   s["steps"] = steps_;
   s["redone_steps"] = redone_steps_;
-  s["open_close_iterations"] = 0;
-  s["max_open_close_per_step"] = 0;
+  s["open_close_iterations"] = open_close_iterations_;
+  s["max_open_close_per_step"] = max_open_close_;
   s["damage_iterations"] = 0;
   s["elements"] = model_.num_elements();
   s["nodes"] = model_.num_nodes();
@@ -282,6 +355,11 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
   nlohmann::json defaults = nlohmann::json::object();
   for (const auto& [key, value] : scene_.defaults) defaults[key] = value;
   defaults["mass"] = "lumped";
+  if (contact_) {
+    defaults["contact.normal_stiffness"] = contact_->parameters().normal_stiffness;
+    defaults["contact.shear_stiffness"] = contact_->parameters().shear_stiffness;
+    defaults["contact.reach"] = contact_->parameters().reach;
+  }
   s["defaults"] = defaults;
   s["timers"] = {{"assembly", timers_.assembly}, {"factorization", timers_.factorization},
                  {"solve", timers_.solve},       {"contact", timers_.contact},

@@ -17,12 +17,14 @@
 #include "engine/output/run_outputs.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/solver/cholmod_solver.hpp"
+#include "engine/time/integrator.hpp"
 #include "engine/time/step_control.hpp"
 #include "engine/timers.hpp"
 
 namespace rockdd {
 
 class Probes;
+class ContactStage;
 
 /// What an observer sees after each committed step.
 struct StepReport {
@@ -68,8 +70,13 @@ class Simulation {
  private:
   /// One step attempt of length dt from the committed state; returns the increment.
   bool attempt_step(long step, double dt, double load_factor, StepControl& control);
-  /// Reassembles and refactorizes K_eff when the mass coefficient or moduli changed.
+  /// Reassembles K + cM (into base_values_ with contacts, values_ without) when the mass
+  /// coefficient, the moduli or the pattern changed; without contacts also refactorizes.
   void prepare_system(double mass_coefficient);
+  /// Pattern of elements plus current contact triples; CHOLMOD analysis of it.
+  void rebuild_layout();
+  /// Solves one open-close iteration: springs, factorization, solve; fills du_.
+  void solve_iteration(long step, const InertiaTerms& inertia);
   void commit_step(double dt);
   EnergyBalance energy() const;
   void evaluate_probes(std::vector<double>& row);
@@ -85,6 +92,10 @@ class Simulation {
   std::vector<double> values_;
   double factorized_mass_coefficient_ = -1.0;
   std::unique_ptr<Probes> probes_;
+  std::unique_ptr<ContactStage> contact_;      // only for scenes with [[joint]]
+  std::vector<double> base_values_;            // K + cM without contact springs
+  std::vector<double> f_contact_, positions_;  // 2 per node
+  long open_close_iterations_ = 0, max_open_close_ = 0;
 
   // Step state (2 per node unless noted).
   std::vector<double> acceleration_, f_int_, f_ext_, f_ext_old_, reaction_, reaction_old_;

@@ -84,9 +84,27 @@ Model build_model(const Scene& scene, const Mesh& mesh) {
   }
   const auto material_of_body = material_of_bodies(scene, model.sets.bodies, elements_per_body);
 
-  // Blocks: every shared edge of the mesh is intact at the start (joints split them later).
+  // Blocks: a shared edge binds its two elements unless a [[joint]] names their two bodies
+  // (SCENE.md: the common curve of conformal bodies becomes a joint, its nodes are split).
   const EdgeAdjacency adjacency = build_edge_adjacency(mesh.triangles, where.c_str());
-  const std::vector<std::uint8_t> intact(mesh.triangles.size(), 1);
+  std::vector<std::uint8_t> intact(mesh.triangles.size(), 1);
+  auto joint_between = [&](std::int32_t body_a, std::int32_t body_b) {
+    const std::string& a = model.sets.bodies[body_a];
+    const std::string& b = model.sets.bodies[body_b];
+    for (const JointSpec& joint : scene.joints) {
+      if (joint.between.size() == 1 && joint.between[0] == "*") return true;
+      if (joint.between.size() == 2 && ((joint.between[0] == a && joint.between[1] == b) ||
+                                        (joint.between[0] == b && joint.between[1] == a)))
+        return true;
+    }
+    return false;
+  };
+  for (std::int32_t e = 0; e < num_elements; ++e)
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t other = adjacency.neighbor[3 * e + k];
+      if (other < 0 || model.element_body[e] == model.element_body[other]) continue;
+      if (joint_between(model.element_body[e], model.element_body[other])) intact[3 * e + k] = 0;
+    }
   BlockTopology topo = form_blocks(mesh.triangles, mesh_nodes, adjacency, intact);
   model.conn = std::move(topo.conn);
   model.element_block = std::move(topo.element_block);
