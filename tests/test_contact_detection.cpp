@@ -110,8 +110,19 @@ TEST(DetectContacts, SameForOneAndTwoThreadsAndMatchesBruteForce) {
     EXPECT_EQ(one[i].vertex, two[i].vertex);
     EXPECT_EQ(one[i].edge, two[i].edge);
   }
-  // Brute force: every (vertex, other block) with some edge of that block within reach must
-  // have exactly one candidate.
+  // Brute force: every (vertex, other block) with some edge of that block within reach that
+  // the vertex faces (outward normals opposed) must have exactly one candidate.
+  std::vector<double> vn(2 * b.vertices.size(), 0.0);
+  for (std::size_t e = 0; e < b.edge_block.size(); ++e) {
+    const double* a = &x[2 * b.edge_nodes[2 * e]];
+    const double* c = &x[2 * b.edge_nodes[2 * e + 1]];
+    const double l = std::hypot(c[0] - a[0], c[1] - a[1]);
+    for (const auto n : {b.edge_nodes[2 * e], b.edge_nodes[2 * e + 1]}) {
+      const auto v = std::lower_bound(b.vertices.begin(), b.vertices.end(), n) - b.vertices.begin();
+      vn[2 * v] += (c[1] - a[1]) / l;
+      vn[2 * v + 1] -= (c[0] - a[0]) / l;
+    }
+  }
   std::size_t expected = 0;
   for (std::size_t v = 0; v < b.vertices.size(); ++v) {
     std::vector<std::int32_t> blocks;
@@ -123,7 +134,8 @@ TEST(DetectContacts, SameForOneAndTwoThreadsAndMatchesBruteForce) {
       const double ex = c[0] - a[0], ey = c[1] - a[1];
       const double t =
           std::clamp(((p[0] - a[0]) * ex + (p[1] - a[1]) * ey) / (ex * ex + ey * ey), 0.0, 1.0);
-      if (std::hypot(p[0] - a[0] - t * ex, p[1] - a[1] - t * ey) <= 0.1)
+      const double facing = ey * vn[2 * v] - ex * vn[2 * v + 1];  // (ey, -ex) . vertex normal
+      if (std::hypot(p[0] - a[0] - t * ex, p[1] - a[1] - t * ey) <= 0.1 && facing < 0.0)
         blocks.push_back(b.edge_block[e]);
     }
     std::sort(blocks.begin(), blocks.end());

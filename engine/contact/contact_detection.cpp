@@ -68,6 +68,24 @@ std::vector<ContactCandidate> detect_contacts(const BlockBoundary& boundary,
   VertexTree tree(2, cloud, nanoflann::KDTreeSingleIndexAdaptorParams(16));
   tree.buildIndex();
 
+  // Outward normal of each boundary vertex: the mean of its boundary edges' normals. A vertex
+  // may only touch a face that it faces (normals opposed): otherwise a block that has sunk by
+  // the penalty penetration would catch the other block's surface vertices on its side faces
+  // as it slides past them.
+  std::vector<double> vertex_normal(2 * boundary.vertices.size(), 0.0);
+  for (std::size_t i = 0; i < num_edges; ++i) {
+    const std::int32_t na = boundary.edge_nodes[2 * i], nb = boundary.edge_nodes[2 * i + 1];
+    const double ex = positions[2 * nb] - positions[2 * na],
+                 ey = positions[2 * nb + 1] - positions[2 * na + 1];
+    const double length = std::hypot(ex, ey);
+    for (const std::int32_t n : {na, nb}) {
+      const auto v = std::lower_bound(boundary.vertices.begin(), boundary.vertices.end(), n) -
+                     boundary.vertices.begin();
+      vertex_normal[2 * v] += ey / length;
+      vertex_normal[2 * v + 1] -= ex / length;
+    }
+  }
+
   // Broad and narrow phase per edge, in parallel; each edge writes only its own list.
   std::vector<std::vector<Found>> per_edge(num_edges);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_edges, 256), [&](auto range) {
@@ -93,7 +111,9 @@ std::vector<ContactCandidate> detect_contacts(const BlockBoundary& boundary,
         const std::int32_t v = boundary.vertices[index];
         const double p[2] = {positions[2 * v], positions[2 * v + 1]};
         const kernels::VertexEdge c = kernels::vertex_edge(p, a, b);
-        if (c.distance <= reach)
+        const double facing =
+            c.normal[0] * vertex_normal[2 * index] + c.normal[1] * vertex_normal[2 * index + 1];
+        if (c.distance <= reach && facing < 0.0)
           per_edge[i].push_back({v, static_cast<std::int32_t>(i), edge_block, c.gap});
       }
     }

@@ -93,6 +93,7 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   if (!lengths.empty()) {
     std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
     parameters_.reach = 0.5 * lengths[lengths.size() / 2];
+    parameters_.gap_tolerance = 1e-4 * parameters_.reach;
   }
 }
 
@@ -217,7 +218,10 @@ int ContactStage::update_states(std::span<const double> positions, double& large
       }
     }
     if (next != c.state) {
-      ++changes;
+      // A closed contact that opens by less than the tolerance changes state but does not
+      // hold the iteration back: re-solving would close it again and cycle.
+      const bool flicker = next == ContactState::open && ve.gap <= parameters_.gap_tolerance;
+      if (!flicker) ++changes;
       if (next != ContactState::locked) c.shear_spring = 0.0;
       c.state = next;
     }

@@ -1,7 +1,9 @@
 #pragma once
 // The contact stage of a step (METHOD.md "Contact"): vertex-edge contacts between blocks,
 // penalty springs (normal kn, shear ks) with Coulomb friction, and the state bookkeeping of
-// the open-close iteration. Built only for scenes with [[joint]] entries.
+// the open-close iteration. Built only for scenes with [[joint]] entries. Frictionless
+// contact is validated (tests/test_contact.cpp); the friction branch is written but does not
+// yet reproduce the inclined-plane answers, so supported_features keeps friction off.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -32,6 +34,7 @@ struct ContactParameters {
   double normal_stiffness = 0.0;  // kn, N/m
   double shear_stiffness = 0.0;   // ks, N/m
   double reach = 0.0;             // search distance for candidates, m
+  double gap_tolerance = 0.0;     // an opening below it does not hold the iteration back
   double thickness = 1.0;
 };
 
