@@ -25,22 +25,25 @@ VertexEdge vertex_edge(const double p[2], const double a[2], const double b[2]) 
   return c;
 }
 
+namespace {
+
+/// d (direction . (p - q)) over (p, a, b) at fixed xi: (d, -(1 - xi) d, -xi d).
+void relative_motion_gradient(const double direction[2], double xi, double out[6]) {
+  for (int k = 0; k < 2; ++k) {
+    out[k] = direction[k];
+    out[2 + k] = -(1.0 - xi) * direction[k];
+    out[4 + k] = -xi * direction[k];
+  }
+}
+
+}  // namespace
+
 void gap_gradient(const VertexEdge& c, double g[6]) {
-  g[0] = c.normal[0];
-  g[1] = c.normal[1];
-  g[2] = -(1.0 - c.xi) * c.normal[0];
-  g[3] = -(1.0 - c.xi) * c.normal[1];
-  g[4] = -c.xi * c.normal[0];
-  g[5] = -c.xi * c.normal[1];
+  relative_motion_gradient(c.normal, c.xi, g);
 }
 
 void slip_gradient(const VertexEdge& c, double s[6]) {
-  s[0] = c.tangent[0];
-  s[1] = c.tangent[1];
-  s[2] = -(1.0 - c.xi) * c.tangent[0];
-  s[3] = -(1.0 - c.xi) * c.tangent[1];
-  s[4] = -c.xi * c.tangent[0];
-  s[5] = -c.xi * c.tangent[1];
+  relative_motion_gradient(c.tangent, c.xi, s);
 }
 
 }  // namespace rockdd::kernels
