@@ -142,6 +142,11 @@ bool ContactStage::detect(std::span<const double> positions) {
   return changed;
 }
 
+double ContactStage::step_slip(const double t[6], const Contact& c,
+                               std::span<const double> positions) const {
+  return dot_contact(t, c, positions) - dot_contact(t, c, step_start_);
+}
+
 std::vector<std::int32_t> ContactStage::triples() const {
   std::vector<std::int32_t> out;
   out.reserve(3 * contacts_.size());
@@ -157,8 +162,6 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
                                std::int32_t first_slot, std::span<double> values,
                                std::span<double> force) const {
   const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
-  std::vector<double> moved(positions.size());
-  for (std::size_t d = 0; d < positions.size(); ++d) moved[d] = positions[d] - step_start_[d];
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
     if (c.state == ContactState::open) continue;
@@ -170,7 +173,7 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
       for (int s = 0; s < 6; ++s) k[6 * r + s] = kn * g[r] * g[s];
     add_to_nodes(c, g, kn * ve.gap, force);
     if (c.state == ContactState::locked) {
-      const double slip = c.shear_spring + dot_contact(t, c, moved);
+      const double slip = c.shear_spring + step_slip(t, c, positions);
       for (int r = 0; r < 6; ++r)
         for (int s = 0; s < 6; ++s) k[6 * r + s] += ks * t[r] * t[s];
       add_to_nodes(c, t, ks * slip, force);
@@ -193,8 +196,6 @@ int ContactStage::update_states(std::span<const double> positions, double& large
   const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
   int changes = 0;
   largest_penetration = 0.0;
-  std::vector<double> moved(positions.size());
-  for (std::size_t d = 0; d < positions.size(); ++d) moved[d] = positions[d] - step_start_[d];
   for (Contact& c : contacts_) {
     const kernels::VertexEdge ve = geometry(c, positions);
     double t[6];
@@ -205,12 +206,12 @@ int ContactStage::update_states(std::span<const double> positions, double& large
       const double normal_force = -kn * ve.gap;
       const double capacity =
           c.friction * normal_force + c.cohesion * 0.5 * ve.length * parameters_.thickness;
-      const double step_slip = dot_contact(t, c, moved);
-      if (c.state == ContactState::sliding && step_slip * c.slip_sign > 0.0) {
+      const double slip_in_step = step_slip(t, c, positions);
+      if (c.state == ContactState::sliding && slip_in_step * c.slip_sign > 0.0) {
         next = ContactState::sliding;  // keeps sliding the same way
       } else {
         const double shear =
-            ks * ((c.state == ContactState::locked ? c.shear_spring : 0.0) + step_slip);
+            ks * ((c.state == ContactState::locked ? c.shear_spring : 0.0) + slip_in_step);
         // Without friction or cohesion a contact can only slide.
         next = capacity <= 0.0 || std::abs(shear) > capacity ? ContactState::sliding
                                                              : ContactState::locked;
@@ -238,9 +239,7 @@ void ContactStage::commit(std::span<const double> positions) {
     const kernels::VertexEdge ve = geometry(c, positions);
     double t[6];
     kernels::slip_gradient(ve, t);
-    std::vector<double> moved(positions.size());
-    for (std::size_t d = 0; d < positions.size(); ++d) moved[d] = positions[d] - step_start_[d];
-    c.shear_spring += dot_contact(t, c, moved);
+    c.shear_spring += step_slip(t, c, positions);
   }
 }
 

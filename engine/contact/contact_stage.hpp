@@ -72,6 +72,8 @@ class ContactStage {
   std::vector<Contact> contacts_;
   std::vector<double> joint_friction_, joint_cohesion_;  // per body pair
   std::vector<double> step_start_;                       // positions at the start of the step
+  /// Tangential slip of contact c since the start of the step, along the slip gradient t.
+  double step_slip(const double t[6], const Contact& c, std::span<const double> positions) const;
 };
 
 }  // namespace rockdd
