@@ -223,7 +223,9 @@ int ContactStage::update_states(std::span<const double> positions, double& large
       // hold the iteration back: re-solving would close it again and cycle.
       const bool flicker = next == ContactState::open && ve.gap <= parameters_.gap_tolerance;
       if (!flicker) ++changes;
-      if (next != ContactState::locked) c.shear_spring = 0.0;
+      // A contact that locks now holds the edge point where it is: its spring starts unstretched
+      // here, not where the step began.
+      c.shear_spring = next == ContactState::locked ? -step_slip(t, c, positions) : 0.0;
       c.state = next;
     }
   }
