@@ -36,6 +36,25 @@ void add_to_nodes(const Contact& c, const double v[6], double scale, std::span<d
   }
 }
 
+/// Stores the gap and slip of contact c linearised about `positions` (the step start).
+void linearise(Contact& c, std::span<const double> positions) {
+  const kernels::VertexEdge ve = geometry(c, positions);
+  kernels::gap_gradient(ve, c.g);
+  kernels::slip_gradient(ve, c.t);
+  c.gap_offset = ve.gap - dot_contact(c.g, c, positions);
+  c.slip_offset = -dot_contact(c.t, c, positions);
+  c.length = ve.length;
+}
+
+double linear_gap(const Contact& c, std::span<const double> positions) {
+  return c.gap_offset + dot_contact(c.g, c, positions);
+}
+
+/// Slip since the start of the step.
+double step_slip(const Contact& c, std::span<const double> positions) {
+  return c.slip_offset + dot_contact(c.t, c, positions);
+}
+
 }  // namespace
 
 ContactStage::ContactStage(const Scene& scene, const Model& model) {
@@ -93,7 +112,6 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   if (!lengths.empty()) {
     std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
     parameters_.reach = 0.5 * lengths[lengths.size() / 2];
-    parameters_.gap_tolerance = 1e-4 * parameters_.reach;
   }
 }
 
@@ -102,49 +120,52 @@ bool ContactStage::detect(std::span<const double> positions) {
   std::vector<Contact> next;
   next.reserve(candidates.size());
   bool changed = candidates.size() != contacts_.size();
-  std::size_t old = 0;
-  for (std::size_t i = 0; i < candidates.size(); ++i) {
-    const ContactCandidate& cand = candidates[i];
+  // A redone step starts again from the committed contacts, not from its failed attempt.
+  for (const ContactCandidate& cand : candidates) {
     Contact c;
     c.vertex = cand.vertex;
     c.edge = cand.edge;
     c.a = boundary_.edge_nodes[2 * static_cast<std::size_t>(cand.edge)];
     c.b = boundary_.edge_nodes[2 * static_cast<std::size_t>(cand.edge) + 1];
-    const std::int32_t body_v = rules_.block_body[boundary_.edge_block[cand.edge]];
-    // The vertex's block: the block of the element that owns the edge is the other side.
+    const std::int32_t edge_block = boundary_.edge_block[cand.edge];
     const auto vb =
         std::lower_bound(boundary_.vertices.begin(), boundary_.vertices.end(), c.vertex);
-    const std::int32_t body_p =
-        rules_.block_body[boundary_.vertex_block[vb - boundary_.vertices.begin()]];
-    const std::size_t k = static_cast<std::size_t>(body_p * rules_.num_bodies + body_v);
+    const std::int32_t vertex_block = boundary_.vertex_block[vb - boundary_.vertices.begin()];
+    const std::size_t k = static_cast<std::size_t>(
+        rules_.block_body[vertex_block] * rules_.num_bodies + rules_.block_body[edge_block]);
     c.friction = joint_friction_[k];
     c.cohesion = joint_cohesion_[k];
-    // Contacts are sorted by (vertex, edge) on both sides: a merge finds the persisting ones.
-    while (old < contacts_.size() && std::make_pair(contacts_[old].vertex, contacts_[old].edge) <
-                                         std::make_pair(c.vertex, c.edge))
-      ++old;
-    if (old < contacts_.size() && contacts_[old].vertex == c.vertex &&
-        contacts_[old].edge == c.edge) {
-      c.state = contacts_[old].state;
-      c.shear_spring = contacts_[old].shear_spring;
-      c.slip_sign = contacts_[old].slip_sign;
-    } else {
-      changed = true;
-      const double gap = geometry(c, positions).gap;
-      c.state = gap <= 0.0 ? (c.friction > 0.0 || c.cohesion > 0.0 ? ContactState::locked
-                                                                   : ContactState::sliding)
-                           : ContactState::open;
+    // What the contact remembers comes from the same pair, or else from the same vertex
+    // against the same block: a vertex sliding onto the next edge keeps sliding (starting it
+    // locked again would catch the block at every mesh node it passes).
+    const Contact* before = nullptr;
+    auto old = std::lower_bound(committed_.begin(), committed_.end(), c.vertex,
+                                [](const Contact& x, std::int32_t v) { return x.vertex < v; });
+    for (; old != committed_.end() && old->vertex == c.vertex; ++old) {
+      if (old->edge == c.edge) {
+        before = &*old;
+        break;
+      }
+      if (boundary_.edge_block[old->edge] == edge_block && old->state != ContactState::open)
+        before = &*old;
     }
+    if (before == nullptr || before->edge != c.edge) changed = true;
+    if (before != nullptr) {
+      c.state = before->state;
+      c.shear_spring = before->shear_spring;
+      c.slip_sign = before->slip_sign;
+      c.friction_force = before->friction_force;
+    } else {
+      const double gap = geometry(c, positions).gap;
+      c.state = gap > 0.0                              ? ContactState::open
+                : c.friction > 0.0 || c.cohesion > 0.0 ? ContactState::locked
+                                                       : ContactState::sliding;
+    }
+    linearise(c, positions);
     next.push_back(c);
   }
   contacts_ = std::move(next);
-  step_start_.assign(positions.begin(), positions.end());
   return changed;
-}
-
-double ContactStage::step_slip(const double t[6], const Contact& c,
-                               std::span<const double> positions) const {
-  return dot_contact(t, c, positions) - dot_contact(t, c, step_start_);
 }
 
 std::vector<std::int32_t> ContactStage::triples() const {
@@ -165,22 +186,18 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
     if (c.state == ContactState::open) continue;
-    const kernels::VertexEdge ve = geometry(c, positions);
-    double g[6], t[6], k[36] = {};
-    kernels::gap_gradient(ve, g);
-    kernels::slip_gradient(ve, t);
+    const double gap = linear_gap(c, positions);
+    double k[36];
     for (int r = 0; r < 6; ++r)
-      for (int s = 0; s < 6; ++s) k[6 * r + s] = kn * g[r] * g[s];
-    add_to_nodes(c, g, kn * ve.gap, force);
+      for (int s = 0; s < 6; ++s) k[6 * r + s] = kn * c.g[r] * c.g[s];
+    add_to_nodes(c, c.g, kn * gap, force);
     if (c.state == ContactState::locked) {
-      const double slip = c.shear_spring + step_slip(t, c, positions);
       for (int r = 0; r < 6; ++r)
-        for (int s = 0; s < 6; ++s) k[6 * r + s] += ks * t[r] * t[s];
-      add_to_nodes(c, t, ks * slip, force);
+        for (int s = 0; s < 6; ++s) k[6 * r + s] += ks * c.t[r] * c.t[s];
+      add_to_nodes(c, c.t, ks * (c.shear_spring + step_slip(c, positions)), force);
     } else {
-      // Sliding: Coulomb friction opposes the slip, as a load computed from the normal force.
-      const double normal_force = kn * std::max(-ve.gap, 0.0);
-      add_to_nodes(c, t, c.slip_sign * c.friction * normal_force, force);
+      // Sliding: Coulomb friction opposes the slip, as a load from the last normal force.
+      add_to_nodes(c, c.t, c.friction_force, force);
     }
     if (values.empty()) continue;
     const std::int32_t* to =
@@ -194,55 +211,74 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
 
 int ContactStage::update_states(std::span<const double> positions, double& largest_penetration) {
   const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
-  int changes = 0;
   largest_penetration = 0.0;
+  for (const Contact& c : contacts_)
+    if (c.state != ContactState::open)
+      largest_penetration = std::max(largest_penetration, -linear_gap(c, positions));
+  // Hysteresis: a contact changes between open and closed only when its gap leaves the band
+  // [-flicker_gap, flicker_gap], a small fraction of the largest penetration: inside it a
+  // contact carries next to nothing, and flipping it would flip it back in the next solve.
+  // A contact that has already gone back and forth in this step stays closed while it pulls
+  // less than a tenth of the largest contact force: the answer lies between its two states.
+  const double flicker_gap = parameters_.flicker_fraction * largest_penetration;
+  int changes = 0;
   for (Contact& c : contacts_) {
-    const kernels::VertexEdge ve = geometry(c, positions);
-    double t[6];
-    kernels::slip_gradient(ve, t);
-    ContactState next = ContactState::open;
-    if (ve.gap <= 0.0) {
-      largest_penetration = std::max(largest_penetration, -ve.gap);
-      const double normal_force = -kn * ve.gap;
+    const double gap = linear_gap(c, positions);
+    const bool was_closed = c.state != ContactState::open;
+    const bool closed = was_closed
+                            ? gap <= flicker_gap || (c.flips >= 2 && gap <= 10.0 * flicker_gap)
+                            : gap < -flicker_gap;
+    if (closed != was_closed) ++c.flips;
+    const double slip = step_slip(c, positions);
+    if (closed && !was_closed) c.shear_spring = -slip;  // it touches here: the anchor
+    const ContactState before = c.state;
+    const double sign_before = c.slip_sign;
+    c.state = ContactState::open;
+    if (closed) {
+      // Return mapping of a rigid-plastic Coulomb spring: the trial shear past the anchor
+      // either fits within the capacity (locked) or the anchor follows the contact so that
+      // the spring carries exactly the capacity (sliding). The force is continuous across a
+      // change of state, which keeps the iteration from cycling between the two.
+      const double normal_force = std::max(-kn * gap, 0.0);  // a contact in tension holds none
       const double capacity =
-          c.friction * normal_force + c.cohesion * 0.5 * ve.length * parameters_.thickness;
-      const double slip_in_step = step_slip(t, c, positions);
-      if (c.state == ContactState::sliding && slip_in_step * c.slip_sign > 0.0) {
-        next = ContactState::sliding;  // keeps sliding the same way
+          c.friction * normal_force + c.cohesion * 0.5 * c.length * parameters_.thickness;
+      const double elastic = c.shear_spring + slip;
+      // Hysteresis again: a sliding contact sticks only once its spring has backed off by a
+      // tenth of the capacity; shear vibrations of an elastic block reverse the slip of single
+      // contacts by nanometres, and sticking on each would cut the friction short.
+      const double stick_limit = before == ContactState::sliding
+                                     ? (1.0 - parameters_.stick_fraction) * capacity
+                                     : capacity;
+      if (ks * std::abs(elastic) <= stick_limit && capacity > 0.0) {
+        c.state = ContactState::locked;
       } else {
-        const double shear =
-            ks * ((c.state == ContactState::locked ? c.shear_spring : 0.0) + slip_in_step);
-        // Without friction or cohesion a contact can only slide.
-        next = capacity <= 0.0 || std::abs(shear) > capacity ? ContactState::sliding
-                                                             : ContactState::locked;
-        if (next == ContactState::sliding) c.slip_sign = shear > 0.0 ? 1.0 : -1.0;
+        c.state = ContactState::sliding;
+        c.slip_sign = elastic > 0.0 ? 1.0 : elastic < 0.0 ? -1.0 : 0.0;
+        c.shear_spring = c.slip_sign * capacity / ks - slip;
+        // The friction load of the solve came from the previous normal force; one that has
+        // moved by more than a few percent must be re-solved, or a step could end carrying
+        // the friction of a deep transient penetration.
+        const double friction_force = c.slip_sign * c.friction * normal_force;
+        if (std::abs(friction_force - c.friction_force) > 0.02 * std::abs(friction_force))
+          ++changes;
+        c.friction_force = friction_force;
       }
+    } else {
+      c.shear_spring = 0.0;
     }
-    if (next != c.state) {
-      // A closed contact that opens by less than the tolerance changes state but does not
-      // hold the iteration back: re-solving would close it again and cycle.
-      const bool flicker = next == ContactState::open && ve.gap <= parameters_.gap_tolerance;
-      if (!flicker) ++changes;
-      // A contact that locks now holds the edge point where it is: its spring starts unstretched
-      // here, not where the step began.
-      c.shear_spring = next == ContactState::locked ? -step_slip(t, c, positions) : 0.0;
-      c.state = next;
+    if (c.state != before ||
+        (c.state == ContactState::sliding && c.slip_sign != sign_before && c.friction > 0.0)) {
+      ++changes;
     }
   }
   return changes;
 }
 
 void ContactStage::commit(std::span<const double> positions) {
-  for (Contact& c : contacts_) {
-    if (c.state != ContactState::locked) {
-      c.shear_spring = 0.0;
-      continue;
-    }
-    const kernels::VertexEdge ve = geometry(c, positions);
-    double t[6];
-    kernels::slip_gradient(ve, t);
-    c.shear_spring += step_slip(t, c, positions);
-  }
+  // The anchor is kept in the next step's slip coordinate, which starts from 0.
+  for (Contact& c : contacts_)
+    c.shear_spring = c.state == ContactState::open ? 0.0 : c.shear_spring + step_slip(c, positions);
+  committed_ = contacts_;
 }
 
 }  // namespace rockdd

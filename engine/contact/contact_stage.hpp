@@ -25,16 +25,26 @@ struct Contact {
   std::int32_t edge = -1;                    // boundary edge index
   ContactState state = ContactState::open;   // state assumed in the current solve
   double shear_spring = 0.0;                 // committed elastic slip of a locked contact (m)
-  double slip_sign = 0.0;                    // direction of sliding, for the friction force
+  double slip_sign = 0.0;                    // direction of sliding
+  double friction_force = 0.0;               // of a sliding contact, along t, from its last solve
   double friction = 0.0, cohesion = 0.0;     // tan(phi), c (Pa) of the joint
+  std::uint8_t flips = 0;                    // open <-> closed changes in this step attempt
+  // The step's linearisation about its start (what the solve sees): gap(x) = gap_offset + g.x
+  // and slip(x) = slip_offset + t.x over the dofs (p, a, b); see kernels/contact_geometry.
+  double g[6] = {}, t[6] = {};
+  double gap_offset = 0.0, slip_offset = 0.0;
+  double length = 0.0;  // edge length at the step start
 };
 
 /// Joint parameters that contacts use, derived from the scene.
 struct ContactParameters {
-  double normal_stiffness = 0.0;  // kn, N/m
-  double shear_stiffness = 0.0;   // ks, N/m
-  double reach = 0.0;             // search distance for candidates, m
-  double gap_tolerance = 0.0;     // an opening below it does not hold the iteration back
+  double normal_stiffness = 0.0;   // kn, N/m
+  double shear_stiffness = 0.0;    // ks, N/m
+  double reach = 0.0;              // search distance for candidates, m
+  double stick_fraction = 0.1;     // a sliding contact sticks once its shear falls this far
+                                   // below the capacity
+  double flicker_fraction = 1e-2;  // a closed contact opening by less than this fraction of
+                                   // the largest penetration stays closed
   double thickness = 1.0;
 };
 
@@ -56,7 +66,9 @@ class ContactStage {
                    std::int32_t first_slot, std::span<double> values,
                    std::span<double> force) const;
   /// Updates the states from the solved `positions`; returns how many changed, and the
-  /// largest penetration.
+  /// largest penetration. Gaps and slips are the step's linearised ones, the same the solve
+  /// used: the exact gap at the end of a step differs from it by O(du^2 / L), which near zero
+  /// force is enough to flip a contact back and forth forever.
   int update_states(std::span<const double> positions, double& largest_penetration);
   /// Commits a converged step ending at `positions`: the elastic slip of locked contacts
   /// accumulates, other contacts forget theirs.
@@ -69,11 +81,9 @@ class ContactStage {
   ContactParameters parameters_;
   BlockBoundary boundary_;
   ContactRules rules_;
-  std::vector<Contact> contacts_;
+  std::vector<Contact> contacts_;                        // of the step being solved
+  std::vector<Contact> committed_;                       // at the end of the last committed step
   std::vector<double> joint_friction_, joint_cohesion_;  // per body pair
-  std::vector<double> step_start_;                       // positions at the start of the step
-  /// Tangential slip of contact c since the start of the step, along the slip gradient t.
-  double step_slip(const double t[6], const Contact& c, std::span<const double> positions) const;
 };
 
 }  // namespace rockdd
