@@ -8,24 +8,13 @@ namespace rockdd {
 
 void check_supported_features(const Scene& scene) {
   const std::string file = scene.file.string();
-  // The contact stage (engine/contact) runs, but the sliding block still lags the analytic
-  // solution by ~5 % at 1.5 s; it stays off until it meets the 1 % of its issue.
   for (std::size_t i = 0; i < scene.joints.size(); ++i) {
     const JointSpec& joint = scene.joints[i];
     const std::string key = "joint[" + std::to_string(i) + "].";
-    // Frictionless contact is validated (the sliding block); friction, cohesion and tension
-    // on joints, and fracture faces, come with the rest of the contact and damage stages.
+    // Fracture faces come with the damage stage.
     if (joint.between.size() == 1 && joint.between[0] == "crack")
       throw InputError(file, key + "between",
                        "joints on fracture faces (\"crack\") are not supported yet");
-    if (joint.friction_angle != 0.0)
-      throw InputError(file, key + "friction_angle",
-                       "friction on joints is not supported yet (use 0)");
-    if (joint.cohesion != 0.0)
-      throw InputError(file, key + "cohesion", "cohesion on joints is not supported yet (use 0)");
-    if (joint.tensile_strength != 0.0)
-      throw InputError(file, key + "tensile_strength",
-                       "tensile strength on joints is not supported yet (use 0)");
   }
   for (std::size_t i = 0; i < scene.materials.size(); ++i) {
     const MaterialSpec& m = scene.materials[i];

@@ -1,9 +1,13 @@
 // Blocks in contact, paper benchmark 2: the frictionless sliding block (data/sliding_block.toml).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <numbers>
+#include <string>
+#include <vector>
 
 #include "test_support.hpp"
 
@@ -46,14 +50,178 @@ TEST(SlidingBlock, SingleBodyWithoutJointBuildsNoContactStage) {
   EXPECT_FALSE(result.summary["defaults"].contains("contact.normal_stiffness"));
 }
 
-TEST(Joints, FrictionalJointsAreRejectedUntilValidated) {
-  try {
-    load_scene(test::data_file("sliding_block.toml"), {"joint.0.friction_angle=15"});
-    FAIL() << "expected an InputError";
-  } catch (const InputError& e) {
-    EXPECT_EQ(e.key(), "joint[0].friction_angle");
-    EXPECT_NE(std::string(e.what()).find("not supported yet"), std::string::npos);
-  }
+/// Runs data/sliding_block.toml with `overrides`; history.csv by column.
+std::map<std::string, std::vector<double>> run_sliding_block(
+    const std::vector<std::string>& overrides) {
+  test::TempDir tmp;
+  const Scene scene = load_scene(test::data_file("sliding_block.toml"), overrides);
+  Simulation sim(scene, build_scene_model(scene));
+  RunOptions options;
+  options.out_root = tmp.path();
+  const RunResult result = sim.run(options);
+  EXPECT_TRUE(result.ok) << result.reason;
+  return test::read_csv(tmp.path() / "sliding-block" / "history.csv");
+}
+
+TEST(SlidingBlock, WithFrictionFollowsTheInclinedPlaneSolution) {
+  // phi = 15 deg < theta = 30 deg: the block slides with a = g (sin th - cos th tan phi), so
+  // along the slope s = 1/2 a t^2, u_x = s cos th, u_y = -s sin th; at t = 1.5 s, within 2 %.
+  const auto h = run_sliding_block({"joint.0.friction_angle=15"});
+  const double th = std::numbers::pi / 6, phi = std::numbers::pi / 12, g = 10.0;
+  const double t = h.at("time").back();
+  const double s = 0.5 * g * (std::sin(th) - std::cos(th) * std::tan(phi)) * t * t;
+  EXPECT_NEAR(t, 1.5, 1e-12);
+  EXPECT_NEAR(h.at("block2.ux").back(), s * std::cos(th), 0.02 * s * std::cos(th));
+  EXPECT_NEAR(h.at("block2.uy").back(), -s * std::sin(th), 0.02 * s * std::sin(th));
+}
+
+TEST(SlidingBlock, FrictionSteeperThanTheSlopeHoldsTheBlock) {
+  // phi = 35 deg > theta = 30 deg: no sliding. Released with unloaded contacts, the block
+  // settles within ~0.1 s (elastic compression of both blocks and the release transient:
+  // measured 1.1e-4 m, bounded here by 5e-4 m); after that it must not move: less than
+  // 1e-6 m between t = 0.2 s and t = 1 s.
+  const auto h = run_sliding_block({"joint.0.friction_angle=35", "time.end=1.0"});
+  const auto& t = h.at("time");
+  const std::size_t settled =
+      static_cast<std::size_t>(std::lower_bound(t.begin(), t.end(), 0.2) - t.begin());
+  ASSERT_LT(settled, t.size());
+  const double dx = h.at("block2.ux").back() - h.at("block2.ux")[settled];
+  const double dy = h.at("block2.uy").back() - h.at("block2.uy")[settled];
+  EXPECT_LT(std::hypot(dx, dy), 1e-6);
+  EXPECT_LT(std::hypot(h.at("block2.ux").back(), h.at("block2.uy").back()), 5e-4);
+}
+
+/// A 1 m x 0.5 m block on a 4 m x 1 m base, meshed separately (two blocks).
+constexpr const char* kBlockOnBase = R"(
+Point(1) = {0, 0, 0, 0.5}; Point(2) = {4, 0, 0, 0.5}; Point(3) = {4, 1, 0, 0.5};
+Point(4) = {0, 1, 0, 0.5};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Point(11) = {0.5, 1, 0, 0.25}; Point(12) = {1.5, 1, 0, 0.25}; Point(13) = {1.5, 1.5, 0, 0.25};
+Point(14) = {0.5, 1.5, 0, 0.25};
+Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14}; Line(14) = {14, 11};
+Curve Loop(11) = {11, 12, 13, 14}; Plane Surface(11) = {11};
+Physical Surface("base") = {1}; Physical Surface("block") = {11};
+Physical Curve("base_bottom") = {1};
+)";
+
+constexpr const char* kBlockOnBaseScene = R"(
+[scene]
+name = "block-on-base"
+analysis = "dynamic"
+plane = "stress"
+gravity = [0.0, -10.0]
+[time]
+dt = 1e-3
+end = 0.8
+[mesh]
+geo = "block_on_base.geo"
+[[material]]
+body = "*"
+density = 2600.0
+young = 10e9
+poisson = 0.25
+[[joint]]
+between = ["base", "block"]
+friction_angle = 20.0
+[[boundary]]
+on = "base_bottom"
+fix = ["x", "y"]
+[[initial]]
+body = "block"
+velocity = [2.0, 0.0]
+[[probe]]
+name = "block"
+body = "block"
+fields = ["ux", "uy", "vx", "vy", "rotation"]
+[output]
+dir = "out"
+every = 0
+)";
+
+TEST(Friction, BrakesABlockSlidingOnAFlatBase) {
+  // v0 = 2 m/s, mu = tan 20 deg: the block decelerates at mu g and stops after
+  // v0 / (mu g) = 0.549 s at v0^2 / (2 mu g) = 0.549 m; within 2 % (measured +0.5 %).
+  // Without friction it keeps v0 (checked to 1e-5 m/s).
+  const double mu = std::tan(20.0 * std::numbers::pi / 180.0), g = 10.0, v0 = 2.0;
+  const auto run =
+      test::run_scene_text(kBlockOnBaseScene, {}, 0, {{"block_on_base.geo", kBlockOnBase}});
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& t = run.history.at("time");
+  const auto& vx = run.history.at("block.vx");
+  std::size_t stop = 0;
+  while (stop < vx.size() && vx[stop] > 1e-3) ++stop;
+  ASSERT_LT(stop, vx.size()) << "the block never stops";
+  EXPECT_NEAR(t[stop], v0 / (mu * g), 0.02 * v0 / (mu * g));
+  EXPECT_NEAR(run.history.at("block.ux").back(), v0 * v0 / (2 * mu * g),
+              0.02 * v0 * v0 / (2 * mu * g));
+  EXPECT_LT(std::abs(vx.back()), 1e-3);  // and stays stopped
+
+  const auto free = test::run_scene_text(kBlockOnBaseScene, {"joint.0.friction_angle=0"}, 0,
+                                         {{"block_on_base.geo", kBlockOnBase}});
+  ASSERT_TRUE(free.result.ok) << free.result.reason;
+  EXPECT_NEAR(free.history.at("block.vx").back(), v0, 1e-5);
+  EXPECT_NEAR(free.history.at("block.ux").back(), v0 * 0.8, 1e-5);
+}
+
+/// A 1 m x 0.5 m block glued under a fixed 4 m x 1 m ledge.
+constexpr const char* kHangingBlock = R"(
+Point(1) = {0, 0, 0, 0.5}; Point(2) = {4, 0, 0, 0.5}; Point(3) = {4, 1, 0, 0.5};
+Point(4) = {0, 1, 0, 0.5};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Point(11) = {1.5, -0.5, 0, 0.25}; Point(12) = {2.5, -0.5, 0, 0.25}; Point(13) = {2.5, 0, 0, 0.25};
+Point(14) = {1.5, 0, 0, 0.25};
+Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14}; Line(14) = {14, 11};
+Curve Loop(11) = {11, 12, 13, 14}; Plane Surface(11) = {11};
+Physical Surface("ledge") = {1}; Physical Surface("block") = {11};
+Physical Curve("ledge_top") = {3};
+)";
+
+TEST(Joints, BondWithTensileStrengthHoldsAHangingBlockUntilTooWeak) {
+  // The block (13 kN) hangs from a bonded joint 1 m long: the mean tension is 13 kPa, and
+  // the release doubles it for a moment. With tensile strength and cohesion 5 x 13 kPa the
+  // bond holds (the block moves less than 1e-5 m); at 0.5 x 13 kPa it breaks and the block
+  // falls freely: u_y = -1/2 g t^2 within 0.1 %.
+  const std::string scene = R"(
+[scene]
+name = "hanging"
+analysis = "dynamic"
+gravity = [0.0, -10.0]
+[time]
+dt = 1e-3
+end = 0.3
+[mesh]
+geo = "hanging.geo"
+[[material]]
+body = "*"
+density = 2600.0
+young = 10e9
+poisson = 0.25
+[[joint]]
+between = ["ledge", "block"]
+friction_angle = 30.0
+[[boundary]]
+on = "ledge_top"
+fix = ["x", "y"]
+[[probe]]
+name = "block"
+body = "block"
+fields = ["uy"]
+[output]
+dir = "out"
+every = 0
+)";
+  const auto strong =
+      test::run_scene_text(scene, {"joint.0.tensile_strength=65e3", "joint.0.cohesion=65e3"}, 0,
+                           {{"hanging.geo", kHangingBlock}});
+  ASSERT_TRUE(strong.result.ok) << strong.result.reason;
+  EXPECT_LT(std::abs(strong.history.at("block.uy").back()), 1e-5);
+  const auto weak =
+      test::run_scene_text(scene, {"joint.0.tensile_strength=6.5e3", "joint.0.cohesion=6.5e3"}, 0,
+                           {{"hanging.geo", kHangingBlock}});
+  ASSERT_TRUE(weak.result.ok) << weak.result.reason;
+  EXPECT_NEAR(weak.history.at("block.uy").back(), -0.5 * 10.0 * 0.09, 0.001 * 0.45);
 }
 
 }  // namespace

@@ -29,10 +29,16 @@ using VertexTree =
     nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<double, VertexCloud>,
                                         VertexCloud, 2, std::size_t>;
 
+/// Normals must be opposed by more than this cosine: a vertex of a flat face against a face
+/// at right angles (facing = 0 up to round-off) is the corner of the other block passing by,
+/// not a contact, and would otherwise catch it with the full distance as penetration.
+constexpr double kFacingMargin = 0.05;
+
 /// A candidate with what the reduction needs: the block pair and the distance.
 struct Found {
   std::int32_t vertex, edge, edge_block;
   double gap;
+  bool interior;  // the vertex projects inside the edge, not past one of its ends
 };
 
 }  // namespace
@@ -113,20 +119,25 @@ std::vector<ContactCandidate> detect_contacts(const BlockBoundary& boundary,
         const kernels::VertexEdge c = kernels::vertex_edge(p, a, b);
         const double facing =
             c.normal[0] * vertex_normal[2 * index] + c.normal[1] * vertex_normal[2 * index + 1];
-        if (c.distance <= reach && facing < 0.0)
-          per_edge[i].push_back({v, static_cast<std::int32_t>(i), edge_block, c.gap});
+        if (c.distance <= reach && facing < -kFacingMargin)
+          per_edge[i].push_back(
+              {v, static_cast<std::int32_t>(i), edge_block, c.gap, c.xi > 0.0 && c.xi < 1.0});
       }
     }
   });
 
-  // Keep, for each vertex and each other block, the edge with the largest gap (ties: lower
-  // edge index). Near a convex corner both faces are within reach: the vertex penetrates only
-  // if it is behind both, and then the face it is least behind is the one it came through.
+  // Keep, for each vertex and each other block, the edge it projects inside of, if any: on a
+  // flat face the neighbouring edges' extensions give the same gap, and pairing the vertex
+  // with one of them would make it a vertex-vertex contact a whole edge away. Among those
+  // (or among the rest, at a corner), the largest gap wins (ties: lower edge index): near a
+  // convex corner the vertex penetrates only if it is behind both faces, and then the face
+  // it is least behind is the one it came through.
   std::vector<Found> all;
   for (const auto& list : per_edge) all.insert(all.end(), list.begin(), list.end());
   std::sort(all.begin(), all.end(), [](const Found& x, const Found& y) {
     if (x.vertex != y.vertex) return x.vertex < y.vertex;
     if (x.edge_block != y.edge_block) return x.edge_block < y.edge_block;
+    if (x.interior != y.interior) return x.interior;
     if (x.gap != y.gap) return x.gap > y.gap;
     return x.edge < y.edge;
   });

@@ -43,7 +43,7 @@ void linearise(Contact& c, std::span<const double> positions) {
   kernels::slip_gradient(ve, c.t);
   c.gap_offset = ve.gap - dot_contact(c.g, c, positions);
   c.slip_offset = -dot_contact(c.t, c, positions);
-  c.length = ve.length;
+  c.gap_start = ve.gap;
 }
 
 double linear_gap(const Contact& c, std::span<const double> positions) {
@@ -64,6 +64,7 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   rules_.allowed.assign(static_cast<std::size_t>(num_bodies * num_bodies), 0);
   joint_friction_.assign(rules_.allowed.size(), 0.0);
   joint_cohesion_.assign(rules_.allowed.size(), 0.0);
+  joint_tensile_.assign(rules_.allowed.size(), 0.0);
   auto body_index = [&](const std::string& name) {
     const auto& bodies = model.sets.bodies;
     return static_cast<std::int32_t>(std::find(bodies.begin(), bodies.end(), name) -
@@ -86,6 +87,7 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
       rules_.allowed[k] = 1;
       joint_friction_[k] = std::tan(joint.friction_angle * std::numbers::pi / 180.0);
       joint_cohesion_[k] = joint.cohesion;
+      joint_tensile_[k] = joint.tensile_strength;
     }
     if (joint.normal_stiffness) given_kn = joint.normal_stiffness;
     if (joint.shear_stiffness) given_ks = joint.shear_stiffness;
@@ -109,6 +111,17 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
     lengths.push_back(
         std::hypot(model.X[2 * b] - model.X[2 * a], model.X[2 * b + 1] - model.X[2 * a + 1]));
   }
+  // Each boundary vertex stands for half of its two boundary edges. Both faces of a joint
+  // have their vertices in contact with the other, so a contact carries half of that: the
+  // cohesion and tensile strength of a joint then act on its true length.
+  vertex_area_.assign(boundary_.vertices.size(), 0.0);
+  for (std::size_t i = 0; i < lengths.size(); ++i)
+    for (int end = 0; end < 2; ++end) {
+      const auto v = std::lower_bound(boundary_.vertices.begin(), boundary_.vertices.end(),
+                                      boundary_.edge_nodes[2 * i + end]) -
+                     boundary_.vertices.begin();
+      vertex_area_[v] += 0.25 * lengths[i] * model.thickness;
+    }
   if (!lengths.empty()) {
     std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
     parameters_.reach = 0.5 * lengths[lengths.size() / 2];
@@ -135,6 +148,8 @@ bool ContactStage::detect(std::span<const double> positions) {
         rules_.block_body[vertex_block] * rules_.num_bodies + rules_.block_body[edge_block]);
     c.friction = joint_friction_[k];
     c.cohesion = joint_cohesion_[k];
+    c.tensile_strength = joint_tensile_[k];
+    c.area = vertex_area_[vb - boundary_.vertices.begin()];
     // What the contact remembers comes from the same pair, or else from the same vertex
     // against the same block: a vertex sliding onto the next edge keeps sliding (starting it
     // locked again would catch the block at every mesh node it passes).
@@ -155,11 +170,17 @@ bool ContactStage::detect(std::span<const double> positions) {
       c.shear_spring = before->shear_spring;
       c.slip_sign = before->slip_sign;
       c.friction_force = before->friction_force;
+      c.bonded = before->bonded;
     } else {
       const double gap = geometry(c, positions).gap;
-      c.state = gap > 0.0                              ? ContactState::open
-                : c.friction > 0.0 || c.cohesion > 0.0 ? ContactState::locked
-                                                       : ContactState::sliding;
+      // Faces meshed onto each other touch up to round-off: they start closed, and a joint
+      // with cohesion or tensile strength holds them bonded until it slides or opens; faces
+      // that meet later touch without a bond.
+      const bool touching = gap <= 1e-9 * parameters_.reach;
+      c.bonded = touching && !started_ && (c.cohesion > 0.0 || c.tensile_strength > 0.0);
+      c.state = !touching                      ? ContactState::open
+                : c.friction > 0.0 || c.bonded ? ContactState::locked
+                                               : ContactState::sliding;
     }
     linearise(c, positions);
     next.push_back(c);
@@ -197,7 +218,7 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
       add_to_nodes(c, c.t, ks * (c.shear_spring + step_slip(c, positions)), force);
     } else {
       // Sliding: Coulomb friction opposes the slip, as a load from the last normal force.
-      add_to_nodes(c, c.t, c.friction_force, force);
+      add_to_nodes(c, c.t, -c.friction_force, force);
     }
     if (values.empty()) continue;
     const std::int32_t* to =
@@ -212,72 +233,97 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
 int ContactStage::update_states(std::span<const double> positions, double& largest_penetration) {
   const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
   largest_penetration = 0.0;
+  double largest_gap = 0.0;  // the largest normal force, over kn: penetration or bond tension
   for (const Contact& c : contacts_)
-    if (c.state != ContactState::open)
-      largest_penetration = std::max(largest_penetration, -linear_gap(c, positions));
-  // Hysteresis: a contact changes between open and closed only when its gap leaves the band
-  // [-flicker_gap, flicker_gap], a small fraction of the largest penetration: inside it a
-  // contact carries next to nothing, and flipping it would flip it back in the next solve.
-  // A contact that has already gone back and forth in this step stays closed while it pulls
-  // less than a tenth of the largest contact force: the answer lies between its two states.
-  const double flicker_gap = parameters_.flicker_fraction * largest_penetration;
+    if (c.state != ContactState::open) {
+      const double gap = linear_gap(c, positions);
+      largest_penetration = std::max(largest_penetration, -gap);
+      largest_gap = std::max(largest_gap, std::abs(gap));
+    }
+  // The iteration has settled when the forces the solve assumed match the states its result
+  // implies, to a small fraction of the largest contact force. Contacts that carry next to
+  // nothing would otherwise flip back and forth forever: a contact changes between open and
+  // closed only when its gap leaves the band [-tolerance, tolerance] / kn, and a change of
+  // shear force smaller than the tolerance does not hold the iteration back.
+  const double tolerance = parameters_.force_tolerance * kn * largest_gap;
+  const double band = tolerance / kn;
   int changes = 0;
   for (Contact& c : contacts_) {
     const double gap = linear_gap(c, positions);
-    const bool was_closed = c.state != ContactState::open;
-    const bool closed = was_closed
-                            ? gap <= flicker_gap || (c.flips >= 2 && gap <= 10.0 * flicker_gap)
-                            : gap < -flicker_gap;
-    if (closed != was_closed) ++c.flips;
     const double slip = step_slip(c, positions);
-    if (closed && !was_closed) c.shear_spring = -slip;  // it touches here: the anchor
     const ContactState before = c.state;
-    const double sign_before = c.slip_sign;
-    c.state = ContactState::open;
-    if (closed) {
-      // Return mapping of a rigid-plastic Coulomb spring: the trial shear past the anchor
-      // either fits within the capacity (locked) or the anchor follows the contact so that
-      // the spring carries exactly the capacity (sliding). The force is continuous across a
-      // change of state, which keeps the iteration from cycling between the two.
-      const double normal_force = std::max(-kn * gap, 0.0);  // a contact in tension holds none
-      const double capacity =
-          c.friction * normal_force + c.cohesion * 0.5 * c.length * parameters_.thickness;
-      const double elastic = c.shear_spring + slip;
-      // Hysteresis again: a sliding contact sticks only once its spring has backed off by a
-      // tenth of the capacity; shear vibrations of an elastic block reverse the slip of single
-      // contacts by nanometres, and sticking on each would cut the friction short.
-      const double stick_limit = before == ContactState::sliding
-                                     ? (1.0 - parameters_.stick_fraction) * capacity
-                                     : capacity;
-      if (ks * std::abs(elastic) <= stick_limit && capacity > 0.0) {
-        c.state = ContactState::locked;
-      } else {
-        c.state = ContactState::sliding;
-        c.slip_sign = elastic > 0.0 ? 1.0 : elastic < 0.0 ? -1.0 : 0.0;
-        c.shear_spring = c.slip_sign * capacity / ks - slip;
-        // The friction load of the solve came from the previous normal force; one that has
-        // moved by more than a few percent must be re-solved, or a step could end carrying
-        // the friction of a deep transient penetration.
-        const double friction_force = c.slip_sign * c.friction * normal_force;
-        if (std::abs(friction_force - c.friction_force) > 0.02 * std::abs(friction_force))
-          ++changes;
-        c.friction_force = friction_force;
-      }
-    } else {
-      c.shear_spring = 0.0;
-    }
-    if (c.state != before ||
-        (c.state == ContactState::sliding && c.slip_sign != sign_before && c.friction > 0.0)) {
+    // The shear force this solve assumed, at its result.
+    const double assumed = before == ContactState::locked    ? ks * (c.shear_spring + slip)
+                           : before == ContactState::sliding ? -c.friction_force
+                                                             : 0.0;
+    const bool was_closed = before != ContactState::open;
+    // A contact that has already gone back and forth in this step stays closed while it
+    // pulls less than a tenth of the largest contact force: the answer lies between its
+    // two states, and either is within tolerance of it. A bonded one holds up to its
+    // tensile strength.
+    const double tension_capacity = c.bonded ? c.tensile_strength * c.area : 0.0;
+    const bool closed = was_closed ? gap <= band || (c.flips >= 2 && gap <= 10.0 * band) ||
+                                         kn * gap <= tension_capacity
+                                   : gap < -band;
+    if (closed != was_closed) {
+      ++c.flips;
       ++changes;
     }
+    if (!closed) {
+      c.bonded = false;  // pulled apart: the bond is broken for good
+      c.state = ContactState::open;
+      c.shear_spring = 0.0;
+      continue;
+    }
+    if (!was_closed) {
+      // It touched during the step, where its gap crossed zero (linear in between): that is
+      // its anchor. Anchoring it at the end of the step would let it skip a step of sliding,
+      // and a block whose contacts chatter would lose that much friction at every touch.
+      const double touched = c.gap_start > 0.0 ? c.gap_start / (c.gap_start - gap) : 0.0;
+      c.shear_spring = -std::clamp(touched, 0.0, 1.0) * slip;
+    }
+    // Coulomb's law as the return mapping of a rigid-plastic spring: the shear past the
+    // anchor either fits within the capacity (locked) or the anchor follows the contact so
+    // that the spring carries exactly the capacity (sliding, with no shear stiffness and the
+    // friction as a load in the next solve).
+    const double normal_force = std::max(-kn * gap, 0.0);  // a contact in tension holds none
+    double capacity = c.friction * normal_force + (c.bonded ? c.cohesion * c.area : 0.0);
+    const double elastic = c.shear_spring + slip;
+    if (c.bonded && ks * std::abs(elastic) > capacity + tolerance) {
+      // Sheared past its cohesion: the bond breaks and only friction is left.
+      c.bonded = false;
+      ++changes;
+      capacity = c.friction * normal_force;
+    }
+    double implied = 0.0;
+    if (capacity > 0.0 && ks * std::abs(elastic) <= capacity) {
+      c.state = ContactState::locked;
+      implied = ks * elastic;
+    } else if (capacity > 0.0 && before == ContactState::sliding && elastic * c.slip_sign < 0.0) {
+      // It slid back past its anchor under the friction load: friction was more than enough
+      // to hold it, so it sticks here, its spring set to carry the friction the solve had:
+      // the forces balance at these positions in either state.
+      c.state = ContactState::locked;
+      c.shear_spring = c.slip_sign * capacity / ks - slip;
+      implied = c.slip_sign * capacity;
+    } else {
+      c.state = ContactState::sliding;
+      c.slip_sign = elastic > 0.0 ? 1.0 : elastic < 0.0 ? -1.0 : 0.0;
+      c.shear_spring = c.slip_sign * capacity / ks - slip;
+      c.friction_force = -c.slip_sign * capacity;
+      implied = -c.friction_force;
+    }
+    if (was_closed && std::abs(implied - assumed) > tolerance) ++changes;
   }
   return changes;
 }
 
 void ContactStage::commit(std::span<const double> positions) {
   // The anchor is kept in the next step's slip coordinate, which starts from 0.
-  for (Contact& c : contacts_)
+  for (Contact& c : contacts_) {
     c.shear_spring = c.state == ContactState::open ? 0.0 : c.shear_spring + step_slip(c, positions);
+  }
+  started_ = true;
   committed_ = contacts_;
 }
 

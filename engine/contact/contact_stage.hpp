@@ -1,9 +1,10 @@
 #pragma once
 // The contact stage of a step (METHOD.md "Contact"): vertex-edge contacts between blocks,
 // penalty springs (normal kn, shear ks) with Coulomb friction, and the state bookkeeping of
-// the open-close iteration. Built only for scenes with [[joint]] entries. Frictionless
-// contact is validated (tests/test_contact.cpp); the friction branch is written but does not
-// yet reproduce the inclined-plane answers, so supported_features keeps friction off.
+// the open-close iteration. Built only for scenes with [[joint]] entries. Validated against
+// the inclined plane with and without friction and a block braked by friction
+// (tests/test_contact.cpp). Joints with cohesion or tensile strength bond the faces that
+// touch at the start until the bond is sheared or pulled apart.
 #include <cstdint>
 #include <optional>
 #include <span>
@@ -26,25 +27,25 @@ struct Contact {
   ContactState state = ContactState::open;   // state assumed in the current solve
   double shear_spring = 0.0;                 // committed elastic slip of a locked contact (m)
   double slip_sign = 0.0;                    // direction of sliding
-  double friction_force = 0.0;               // of a sliding contact, along t, from its last solve
-  double friction = 0.0, cohesion = 0.0;     // tan(phi), c (Pa) of the joint
-  std::uint8_t flips = 0;                    // open <-> closed changes in this step attempt
+  double friction_force = 0.0;  // of a sliding contact on its vertex, along t (last solve)
+  double friction = 0.0, cohesion = 0.0;  // tan(phi), c (Pa) of the joint
+  double tensile_strength = 0.0;          // of the joint (Pa)
+  double area = 0.0;       // joint area the contact stands for (m^2), for cohesion and tension
+  bool bonded = false;     // an intact joint: cohesion and tensile strength count until it fails
+  std::uint8_t flips = 0;  // open <-> closed changes in this step attempt
   // The step's linearisation about its start (what the solve sees): gap(x) = gap_offset + g.x
   // and slip(x) = slip_offset + t.x over the dofs (p, a, b); see kernels/contact_geometry.
   double g[6] = {}, t[6] = {};
   double gap_offset = 0.0, slip_offset = 0.0;
-  double length = 0.0;  // edge length at the step start
+  double gap_start = 0.0;  // the gap at the start of the step
 };
 
 /// Joint parameters that contacts use, derived from the scene.
 struct ContactParameters {
-  double normal_stiffness = 0.0;   // kn, N/m
-  double shear_stiffness = 0.0;    // ks, N/m
-  double reach = 0.0;              // search distance for candidates, m
-  double stick_fraction = 0.1;     // a sliding contact sticks once its shear falls this far
-                                   // below the capacity
-  double flicker_fraction = 1e-2;  // a closed contact opening by less than this fraction of
-                                   // the largest penetration stays closed
+  double normal_stiffness = 0.0;  // kn, N/m
+  double shear_stiffness = 0.0;   // ks, N/m
+  double reach = 0.0;             // search distance for candidates, m
+  double force_tolerance = 1e-2;  // settled: forces within this fraction of the largest
   double thickness = 1.0;
 };
 
@@ -81,9 +82,11 @@ class ContactStage {
   ContactParameters parameters_;
   BlockBoundary boundary_;
   ContactRules rules_;
-  std::vector<Contact> contacts_;                        // of the step being solved
-  std::vector<Contact> committed_;                       // at the end of the last committed step
-  std::vector<double> joint_friction_, joint_cohesion_;  // per body pair
+  std::vector<Contact> contacts_;   // of the step being solved
+  std::vector<Contact> committed_;  // at the end of the last committed step
+  std::vector<double> joint_friction_, joint_cohesion_, joint_tensile_;  // per body pair
+  std::vector<double> vertex_area_;  // per boundary vertex, see Contact::area
+  bool started_ = false;  // a step has been committed: contacts that form now are not bonded
 };
 
 }  // namespace rockdd
