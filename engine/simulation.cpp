@@ -14,12 +14,16 @@
 #include "engine/errors.hpp"
 #include "engine/loading/external_loads.hpp"
 #include "engine/output/probes.hpp"
+#include "engine/time/rotation_correction.hpp"
 
 namespace rockdd {
 namespace {
 
 /// Open-close iterations allowed in one step before it is redone with dt / 2.
 constexpr int kMaxOpenCloseIterations = 12;
+
+/// Rotation (rad) an element may turn before the stiffness is reassembled in its new frame.
+constexpr double kFrameTolerance = 1e-3;
 
 /// Run length: `end`, or `steps` x dt, or one step of 1 s in a static scene without [time].
 double end_time_of(const Scene& scene) {
@@ -43,6 +47,9 @@ const char* analysis_name(Analysis a) {
 
 Simulation::Simulation(Scene scene, Model model)
     : scene_(std::move(scene)), model_(std::move(model)) {
+  // Blocks that move turn: their strain is measured in co-rotated frames. A static analysis
+  // restrains every block and solves once, small strain (f_int = K u exactly).
+  corotational_ = scene_.analysis != Analysis::static_;
   bc_ = build_boundary_conditions(scene_, model_);
   if (scene_.analysis == Analysis::static_) check_static_restraint(scene_, model_, bc_);
   reference_loads_ = build_reference_loads(scene_, model_);
@@ -162,6 +169,12 @@ bool Simulation::attempt_step(long step, double dt, double load_factor, StepCont
     }
     if (changed) rebuild_layout();
   }
+  // Co-rotation: the stiffness follows the elements' frames once any has turned by more than
+  // kFrameTolerance since K was assembled (the internal force always uses the exact frames).
+  if (corotational_ && largest_rotation_change(model_, model_.u) > kFrameTolerance) {
+    update_element_rotations(model_, model_.u);
+    factorized_mass_coefficient_ = -1.0;
+  }
   prepare_system(inertia.mass_coefficient);
 
   for (std::size_t d = 0; d < num_dofs; ++d) {
@@ -171,7 +184,8 @@ bool Simulation::attempt_step(long step, double dt, double load_factor, StepCont
   }
   {
     ScopedTimer timer(timers_.assembly);
-    compute_internal_force(model_, coloring_, u_trial_, model_.strain, model_.stress, f_int_);
+    compute_internal_force(model_, coloring_, u_trial_, model_.strain, model_.stress, f_int_,
+                           corotational_);
   }
   // The open-close iteration (a single solve without contacts): assume states, solve, check.
   int iterations = 0;
@@ -212,12 +226,15 @@ bool Simulation::attempt_step(long step, double dt, double load_factor, StepCont
 
 void Simulation::commit_step(double dt) {
   const std::size_t num_dofs = model_.X.size();
-  for (std::size_t d = 0; d < num_dofs; ++d) model_.u[d] += du_[d];
   update_velocity(scene_.analysis, scene_.time.integrator, dt, du_, bc_.prescribed, bc_.velocity,
                   model_.v, acceleration_);
+  if (corotational_)
+    correct_block_rotations(model_, model_.u, bc_.prescribed, du_, model_.v, acceleration_);
+  for (std::size_t d = 0; d < num_dofs; ++d) model_.u[d] += du_[d];
   {
     ScopedTimer timer(timers_.assembly);
-    compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, f_int_);
+    compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, f_int_,
+                           corotational_);
   }
   if (contact_) {
     ScopedTimer timer(timers_.contact);
@@ -271,7 +288,8 @@ RunResult Simulation::run(const RunOptions& options) {
   const double initial_factor = load_factor(scene_.analysis, 0.0, end_time);
   for (std::size_t d = 0; d < model_.X.size(); ++d)
     f_ext_old_[d] = initial_factor * reference_loads_[d];
-  compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, f_int_);
+  compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, f_int_,
+                         corotational_);
   // Newmark needs the acceleration that balances the initial state, a0 = M^-1 (F - f_int);
   // starting from a0 = 0 would leave a velocity error of g dt / 2 for the whole run.
   for (std::size_t d = 0; d < model_.X.size(); ++d)

@@ -91,6 +91,7 @@ class Simulation {
   CholmodSolver solver_;
   std::vector<double> values_;
   double factorized_mass_coefficient_ = -1.0;
+  bool corotational_ = false;  // strain in co-rotated element frames (not in static analysis)
   std::unique_ptr<Probes> probes_;
   std::unique_ptr<ContactStage> contact_;      // only for scenes with [[joint]]
   std::vector<double> base_values_;            // K + cM without contact springs

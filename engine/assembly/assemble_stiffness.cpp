@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "engine/assembly/element_state.hpp"
+#include "kernels/corotation.hpp"
 
 namespace rockdd {
 
@@ -25,6 +26,9 @@ void assemble_stiffness(const Model& model, const ElementColoring& coloring,
             kernels::elasticity_matrix(damaged_young(model.young[e], model.damage[e]),
                                        model.poisson[e], plane, d);
             kernels::cst_stiffness(xy, d, t, k);
+            // Co-rotational: the reference stiffness turned into the element's frame.
+            if (!model.rotation.empty() && model.rotation[e] != 0.0)
+              kernels::rotate_element_matrix(model.rotation[e], k);
             const std::int32_t* to =
                 &layout.scatter[static_cast<std::size_t>(e) * kElementUpperEntries];
             for (int a = 0; a < 6; ++a)

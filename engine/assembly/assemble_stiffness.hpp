@@ -8,7 +8,8 @@
 
 namespace rockdd {
 
-/// K_eff = sum of element stiffness (damaged moduli, reference geometry) plus
+/// K_eff = sum of element stiffness (damaged moduli, reference geometry turned by each
+/// element's frame rotation, Model::rotation) plus
 /// `mass_coefficient` times the lumped mass on the diagonal (2/dt^2 for DDA inertia).
 /// Fills `values` (pattern order); bitwise identical for any thread count.
 void assemble_stiffness(const Model& model, const ElementColoring& coloring,

@@ -4,14 +4,17 @@
 #include <tbb/parallel_reduce.h>
 
 #include <algorithm>
+#include <cmath>
+#include <numbers>
 
 #include "engine/assembly/element_state.hpp"
+#include "kernels/corotation.hpp"
 
 namespace rockdd {
 
 void compute_internal_force(const Model& model, const ElementColoring& coloring,
                             std::span<const double> u, std::span<double> strain,
-                            std::span<double> stress, std::span<double> f_int) {
+                            std::span<double> stress, std::span<double> f_int, bool corotational) {
   const kernels::PlaneKind plane = plane_kind(model.plane);
   const double t = model.thickness;
   std::fill(f_int.begin(), f_int.end(), 0.0);
@@ -21,9 +24,13 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
         [&](auto range) {
           for (std::int32_t i = range.begin(); i != range.end(); ++i) {
             const std::int32_t e = coloring.element[i];
-            double xy[6], ue[6], d[9], f[6];
+            double xy[6], x[6], ue[6], d[9], f[6];
             gather_element(model.conn, e, model.X, xy);
             gather_element(model.conn, e, u, ue);
+            for (int k = 0; k < 6; ++k) x[k] = xy[k] + ue[k];
+            // Co-rotational: strain and stress in the element's own frame, forces turned back.
+            const double theta = corotational ? kernels::element_rotation(xy, x) : 0.0;
+            if (corotational) kernels::corotated_displacement(xy, x, theta, ue);
             kernels::elasticity_matrix(damaged_young(model.young[e], model.damage[e]),
                                        model.poisson[e], plane, d);
             double* eps = &strain[3 * static_cast<std::size_t>(e)];
@@ -31,6 +38,14 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
             kernels::cst_strain(xy, ue, eps);
             kernels::cst_stress(d, eps, sig);
             kernels::cst_internal_force(xy, sig, t, f);
+            if (corotational) {
+              kernels::rotate_nodal(theta, f);
+              // Reported in the global frame: sigma = R sigma' R^T, likewise the strain.
+              kernels::rotate_tensor(theta, sig);
+              eps[2] *= 0.5;
+              kernels::rotate_tensor(theta, eps);
+              eps[2] *= 2.0;
+            }
             for (int k = 0; k < 3; ++k) {
               const std::int32_t n = model.conn[3 * e + k];
               f_int[2 * n] += f[2 * k];
@@ -39,6 +54,37 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
           }
         });
   }
+}
+
+double largest_rotation_change(const Model& model, std::span<const double> u) {
+  return tbb::parallel_reduce(
+      tbb::blocked_range<std::int32_t>(0, model.num_elements(), 4096), 0.0,
+      [&](auto range, double largest) {
+        for (std::int32_t e = range.begin(); e != range.end(); ++e) {
+          double xy[6], x[6];
+          gather_element(model.conn, e, model.X, xy);
+          gather_element(model.conn, e, u, x);
+          for (int k = 0; k < 6; ++k) x[k] += xy[k];
+          const double frame = model.rotation.empty() ? 0.0 : model.rotation[e];
+          // The difference of two angles, wrapped to (-pi, pi].
+          const double change =
+              std::remainder(kernels::element_rotation(xy, x) - frame, 2.0 * std::numbers::pi);
+          largest = std::max(largest, std::abs(change));
+        }
+        return largest;
+      },
+      [](double a, double b) { return std::max(a, b); });
+}
+
+void update_element_rotations(Model& model, std::span<const double> u) {
+  model.rotation.resize(static_cast<std::size_t>(model.num_elements()));
+  tbb::parallel_for(std::int32_t{0}, model.num_elements(), [&](std::int32_t e) {
+    double xy[6], x[6];
+    gather_element(model.conn, e, model.X, xy);
+    gather_element(model.conn, e, u, x);
+    for (int k = 0; k < 6; ++k) x[k] += xy[k];
+    model.rotation[e] = kernels::element_rotation(xy, x);
+  });
 }
 
 double strain_energy(const Model& model, std::span<const double> strain,

@@ -1,5 +1,7 @@
 #pragma once
-// Stress recovery and the nodal internal force it implies, f_int = sum t A B^T sigma.
+// Stress recovery and the nodal internal force it implies, f_int = sum R t A B^T sigma', with
+// the strain measured in each element's co-rotated frame (kernels/corotation.hpp), and the
+// element frames that the stiffness uses.
 #include <span>
 
 #include "engine/assembly/element_coloring.hpp"
@@ -7,11 +9,21 @@
 
 namespace rockdd {
 
-/// For displacement `u`: fills each element's `strain` and `stress` (3 per element) and the
-/// nodal internal force `f_int` (2 per node). Deterministic for any thread count.
+/// For displacement `u`: fills each element's `strain` and `stress` (3 per element, global
+/// frame) and the nodal internal force `f_int` (2 per node). `corotational` measures strain in
+/// each element's rotated frame (blocks that turn); without it, small strain, f_int = K u
+/// exactly (static analysis). Deterministic for any thread count.
 void compute_internal_force(const Model& model, const ElementColoring& coloring,
                             std::span<const double> u, std::span<double> strain,
-                            std::span<double> stress, std::span<double> f_int);
+                            std::span<double> stress, std::span<double> f_int,
+                            bool corotational = false);
+
+/// Largest change of any element's rotation, at displacement `u`, since its frame in K
+/// (Model::rotation) was set: how stale the stiffness is. Deterministic.
+double largest_rotation_change(const Model& model, std::span<const double> u);
+
+/// Sets each element's stiffness frame (Model::rotation) to its rotation at displacement `u`.
+void update_element_rotations(Model& model, std::span<const double> u);
 
 /// Strain energy, sum of 1/2 sigma : eps t A over the elements (J).
 double strain_energy(const Model& model, std::span<const double> strain,

@@ -142,6 +142,7 @@ Model build_model(const Scene& scene, const Mesh& mesh) {
     model.area0[e] = kernels::cst_signed_area(xy);
   }
   model.damage.assign(static_cast<std::size_t>(num_elements), 0.0);
+  model.rotation.assign(static_cast<std::size_t>(num_elements), 0.0);
   model.strain.assign(3 * static_cast<std::size_t>(num_elements), 0.0);
   model.stress.assign(3 * static_cast<std::size_t>(num_elements), 0.0);
   model.node_mass = lumped_node_mass(model);

@@ -39,10 +39,11 @@ struct Model {
   std::vector<double> young;  // undamaged E0 of each element
   std::vector<double> poisson;
   std::vector<double> density;
-  std::vector<double> area0;   // reference area
-  std::vector<double> damage;  // w in [0, 1]
-  std::vector<double> strain;  // 3 per element: exx, eyy, gxy
-  std::vector<double> stress;  // 3 per element: sxx, syy, sxy
+  std::vector<double> area0;     // reference area
+  std::vector<double> damage;    // w in [0, 1]
+  std::vector<double> rotation;  // angle of each element's co-rotational frame in K (rad)
+  std::vector<double> strain;    // 3 per element: exx, eyy, gxy
+  std::vector<double> stress;    // 3 per element: sxx, syy, sxy
 
   std::int32_t num_blocks = 0;
   std::vector<MaterialSpec> materials;

@@ -1,0 +1,71 @@
+#include "kernels/corotation.hpp"
+
+#include <cmath>
+
+#include "kernels/cst.hpp"
+
+namespace rockdd::kernels {
+
+double element_rotation(const double xy0[6], const double xy[6]) {
+  // F = dx/dX = sum_k x_k (grad N_k)^T, constant over the triangle. In 2D the rotation
+  // factor of F = R U is the angle atan2(F21 - F12, F11 + F22).
+  double b[3], c[3];
+  const double two_area = 2.0 * cst_gradients(xy0, b, c);
+  double f[2][2] = {{0, 0}, {0, 0}};
+  for (int k = 0; k < 3; ++k)
+    for (int i = 0; i < 2; ++i) {
+      f[i][0] += xy[2 * k + i] * b[k] / two_area;
+      f[i][1] += xy[2 * k + i] * c[k] / two_area;
+    }
+  return std::atan2(f[1][0] - f[0][1], f[0][0] + f[1][1]);
+}
+
+void corotated_displacement(const double xy0[6], const double xy[6], double theta, double u[6]) {
+  const double cs = std::cos(theta), sn = std::sin(theta);
+  const double xc = (xy[0] + xy[2] + xy[4]) / 3.0, yc = (xy[1] + xy[3] + xy[5]) / 3.0;
+  const double x0c = (xy0[0] + xy0[2] + xy0[4]) / 3.0, y0c = (xy0[1] + xy0[3] + xy0[5]) / 3.0;
+  for (int k = 0; k < 3; ++k) {
+    const double dx = xy[2 * k] - xc, dy = xy[2 * k + 1] - yc;
+    u[2 * k] = cs * dx + sn * dy - (xy0[2 * k] - x0c);
+    u[2 * k + 1] = -sn * dx + cs * dy - (xy0[2 * k + 1] - y0c);
+  }
+}
+
+void rotate_nodal(double theta, double v[6]) {
+  const double cs = std::cos(theta), sn = std::sin(theta);
+  for (int k = 0; k < 3; ++k) {
+    const double x = v[2 * k], y = v[2 * k + 1];
+    v[2 * k] = cs * x - sn * y;
+    v[2 * k + 1] = sn * x + cs * y;
+  }
+}
+
+void rotate_element_matrix(double theta, double k[36]) {
+  const double cs = std::cos(theta), sn = std::sin(theta);
+  // T k T^T with T block diagonal: rotate the columns (k T^T), then the rows (T (k T^T)).
+  for (int r = 0; r < 6; ++r)
+    for (int n = 0; n < 3; ++n) {
+      double* row = &k[6 * r + 2 * n];
+      const double x = row[0], y = row[1];
+      row[0] = cs * x - sn * y;
+      row[1] = sn * x + cs * y;
+    }
+  for (int n = 0; n < 3; ++n)
+    for (int col = 0; col < 6; ++col) {
+      double& x = k[6 * (2 * n) + col];
+      double& y = k[6 * (2 * n + 1) + col];
+      const double a = x, b = y;
+      x = cs * a - sn * b;
+      y = sn * a + cs * b;
+    }
+}
+
+void rotate_tensor(double theta, double s[3]) {
+  const double cs = std::cos(theta), sn = std::sin(theta);
+  const double xx = s[0], yy = s[1], xy = s[2];
+  s[0] = cs * cs * xx - 2.0 * cs * sn * xy + sn * sn * yy;
+  s[1] = sn * sn * xx + 2.0 * cs * sn * xy + cs * cs * yy;
+  s[2] = cs * sn * (xx - yy) + (cs * cs - sn * sn) * xy;
+}
+
+}  // namespace rockdd::kernels
