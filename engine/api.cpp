@@ -1,4 +1,5 @@
 #include "engine/mesh/mesh.hpp"
+#include "engine/model/element_strength.hpp"
 #include "engine/rockdd.hpp"
 #include "engine/scene/scene_reader.hpp"
 #include "engine/supported_features.hpp"
@@ -12,7 +13,9 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
 }
 
 Model build_scene_model(const Scene& scene) {
-  return build_model(scene, build_mesh(scene.mesh, scene.file));
+  Model model = build_model(scene, build_mesh(scene.mesh, scene.file));
+  assign_element_strengths(scene, model);
+  return model;
 }
 
 const char* version() {

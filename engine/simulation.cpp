@@ -11,6 +11,8 @@
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/internal_force.hpp"
 #include "engine/contact/contact_stage.hpp"
+#include "engine/damage/damage_stage.hpp"
+#include "engine/damage/detachment.hpp"
 #include "engine/errors.hpp"
 #include "engine/loading/external_loads.hpp"
 #include "engine/output/probes.hpp"
@@ -21,6 +23,12 @@ namespace {
 
 /// Open-close iterations allowed in one step before it is redone with dt / 2.
 constexpr int kMaxOpenCloseIterations = 12;
+
+/// Spring (fraction of E t) tying a lone fragment to its place in steps without inertia.
+constexpr double kFragmentAnchor = 1e-2;
+
+/// Re-solves of one step for newly damaged elements before the step goes on regardless.
+constexpr int kMaxDamageIterations = 20;
 
 /// Rotation (rad) an element may turn before the stiffness is reassembled in its new frame.
 constexpr double kFrameTolerance = 1e-3;
@@ -57,11 +65,12 @@ Simulation::Simulation(Scene scene, Model model)
 
   coloring_ = color_elements(model_.conn, model_.num_nodes());
   if (!scene_.joints.empty()) contact_ = std::make_unique<ContactStage>(scene_, model_);
+  if (!model_.tensile_strength.empty()) damage_ = std::make_unique<DamageStage>(scene_, model_);
   rebuild_layout();
 
   const std::size_t num_dofs = model_.X.size();
   for (auto* field : {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_,
-                      &u_trial_, &du_, &f_contact_, &positions_})
+                      &u_trial_, &du_, &f_contact_, &positions_, &damage_force_})
     field->assign(num_dofs, 0.0);
   rhs_.assign(static_cast<std::size_t>(bc_.num_equations), 0.0);
   for (const InitialSpec& init : scene_.initial) {
@@ -110,8 +119,12 @@ void Simulation::prepare_system(double mass_coefficient) {
   if (mass_coefficient == factorized_mass_coefficient_ || bc_.num_equations == 0) return;
   {
     ScopedTimer timer(timers_.assembly);
-    assemble_stiffness(model_, coloring_, layout_, bc_.equation, mass_coefficient,
-                       contact_ ? std::span<double>(base_values_) : std::span<double>(values_));
+    std::span<double> target =
+        contact_ ? std::span<double>(base_values_) : std::span<double>(values_);
+    assemble_stiffness(model_, coloring_, layout_, bc_.equation, mass_coefficient, target);
+    for (std::size_t d = 0; d < 2 * fragment_anchor_.size(); ++d)
+      if (fragment_anchor_[d / 2] > 0.0 && bc_.equation[d] >= 0)
+        target[layout_.diagonal[bc_.equation[d]]] += fragment_anchor_[d / 2];
   }
   factorized_mass_coefficient_ = mass_coefficient;
   if (contact_) return;  // factorized in every open-close iteration, with the springs
@@ -187,6 +200,49 @@ bool Simulation::attempt_step(long step, double dt, double load_factor, StepCont
     compute_internal_force(model_, coloring_, u_trial_, model_.strain, model_.stress, f_int_,
                            corotational_);
   }
+  // The damage iteration (METHOD.md): while elements newly damage, re-solve the same step
+  // with their reduced moduli.
+  for (int pass = 1;; ++pass) {
+    if (!open_close_iteration(step, inertia, control)) return false;
+    if (!damage_) break;
+    const DamageChange change = evaluate_damage();
+    if (change.newly_damaged == 0) break;
+    if (pass >= kMaxDamageIterations) {
+      ++damage_limit_hits_;
+      break;
+    }
+    ++damage_iterations_;
+    prepare_system(inertia.mass_coefficient);
+    ScopedTimer timer(timers_.assembly);
+    compute_internal_force(model_, coloring_, u_trial_, model_.strain, model_.stress, f_int_,
+                           corotational_);
+  }
+  double largest = 0.0;
+  for (std::size_t d = 0; d < num_dofs; ++d) largest = std::max(largest, std::abs(du_[d]));
+  if (!control.displacement_ok(largest)) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf,
+                  "largest displacement increment %.3g m exceeds max_step_displacement", largest);
+    control.reject(step, buf);
+    return false;
+  }
+  return true;
+}
+
+DamageChange Simulation::evaluate_damage() {
+  ScopedTimer timer(timers_.damage);
+  const std::size_t num_dofs = model_.X.size();
+  for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.u[d] + du_[d];
+  compute_internal_force(model_, coloring_, positions_, model_.strain, model_.stress, damage_force_,
+                         corotational_);
+  const DamageChange change = damage_->evaluate(model_);
+  if (change.grown > 0) factorized_mass_coefficient_ = -1.0;  // the moduli changed
+  return change;
+}
+
+bool Simulation::open_close_iteration(long step, const InertiaTerms& inertia,
+                                      StepControl& control) {
+  const std::size_t num_dofs = model_.X.size();
   // The open-close iteration (a single solve without contacts): assume states, solve, check.
   int iterations = 0;
   while (true) {
@@ -211,15 +267,6 @@ bool Simulation::attempt_step(long step, double dt, double load_factor, StepCont
   if (contact_) {
     open_close_iterations_ += iterations;
     max_open_close_ = std::max<long>(max_open_close_, iterations);
-  }
-  double largest = 0.0;
-  for (std::size_t d = 0; d < num_dofs; ++d) largest = std::max(largest, std::abs(du_[d]));
-  if (!control.displacement_ok(largest)) {
-    char buf[160];
-    std::snprintf(buf, sizeof buf,
-                  "largest displacement increment %.3g m exceeds max_step_displacement", largest);
-    control.reject(step, buf);
-    return false;
   }
   return true;
 }
@@ -252,6 +299,52 @@ void Simulation::commit_step(double dt) {
   external_work_ += work;
   std::swap(f_ext_old_, f_ext_);
   std::swap(reaction_old_, reaction_);
+}
+
+void Simulation::detach_fractured_elements() {
+  ScopedTimer timer(timers_.damage);
+  std::vector<double> threshold(static_cast<std::size_t>(model_.num_elements()));
+  for (std::int32_t e = 0; e < model_.num_elements(); ++e)
+    threshold[e] = damage_->detach_threshold(model_, e);
+  const Detachment detachment = detach_damaged_elements(model_, threshold, detached_);
+  if (detachment.detached == 0) return;
+  detached_elements_ += detachment.detached;
+  // Everything built on the nodes follows the split: the step state, the constraints and
+  // loads (named curves carried their element sides over), probes, colouring and contacts.
+  for (auto* field : {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_,
+                      &u_trial_, &du_, &f_contact_, &positions_, &damage_force_})
+    follow_split_nodes(detachment.node_origin, *field);
+  bc_ = build_boundary_conditions(scene_, model_);
+  reference_loads_ = build_reference_loads(scene_, model_);
+  rhs_.assign(static_cast<std::size_t>(bc_.num_equations), 0.0);
+  auto probes = std::make_unique<Probes>(scene_, model_);
+  probes->carry_state_from(*probes_);
+  probes_ = std::move(probes);
+  coloring_ = color_elements(model_.conn, model_.num_nodes());
+  anchor_fragments();
+  auto contact = std::make_unique<ContactStage>(scene_, model_);
+  if (contact_) contact->carry_contacts_from(*contact_);
+  contact_ = std::move(contact);
+  rebuild_layout();
+}
+
+void Simulation::anchor_fragments() {
+  // Without inertia (static and quasi-static steps) a lone detached element that no contact
+  // holds sideways is a floating block: its friction load alone would throw it. It is tied
+  // to where each step starts by a spring of kFragmentAnchor E t: debris, not structure.
+  if (scene_.analysis == Analysis::dynamic) return;
+  // (Only its free dofs: a fragment on a platen that holds one direction slides in the other.)
+  std::vector<std::int32_t> elements_in_block(static_cast<std::size_t>(model_.num_blocks), 0);
+  for (std::int32_t e = 0; e < model_.num_elements(); ++e)
+    ++elements_in_block[model_.element_block[e]];
+  fragment_anchor_.assign(static_cast<std::size_t>(model_.num_nodes()), 0.0);
+  for (std::int32_t e = 0; e < model_.num_elements(); ++e) {
+    const std::int32_t b = model_.element_block[e];
+    if (elements_in_block[b] != 1) continue;
+    for (int k = 0; k < 3; ++k)
+      fragment_anchor_[model_.conn[3 * e + k]] =
+          kFragmentAnchor * model_.young[e] * model_.thickness;
+  }
 }
 
 EnergyBalance Simulation::energy() const {
@@ -322,6 +415,7 @@ RunResult Simulation::run(const RunOptions& options) {
         dt = std::min(control.dt(), end_time - t);
       }
       commit_step(dt);
+      if (damage_) detach_fractured_elements();
       t += dt;
       steps_ = step;
       control.accept(true);
@@ -362,11 +456,22 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
   s["redone_steps"] = redone_steps_;
   s["open_close_iterations"] = open_close_iterations_;
   s["max_open_close_per_step"] = max_open_close_;
-  s["damage_iterations"] = 0;
+  s["damage_iterations"] = damage_iterations_;
+  s["damage_iteration_limit_hits"] = damage_limit_hits_;
   s["elements"] = model_.num_elements();
   s["nodes"] = model_.num_nodes();
   s["equations"] = bc_.num_equations;
   s["blocks"] = model_.num_blocks;
+  s["detached_elements"] = detached_elements_;
+  if (damage_) {
+    // METHOD.md: say which tensile onset each damageable material uses.
+    nlohmann::json onset = nlohmann::json::object();
+    for (std::size_t i = 0; i < scene_.materials.size(); ++i)
+      if (scene_.materials[i].has_damage())
+        onset["material[" + std::to_string(i) + "]"] =
+            scene_.materials[i].tension_onset == TensionOnset::strain ? "strain" : "stress";
+    s["tension_onset"] = onset;
+  }
   s["damaged_elements"] =
       std::count_if(model_.damage.begin(), model_.damage.end(), [](double w) { return w > 0; });
   s["peaks"] = nlohmann::json::object();

@@ -25,6 +25,8 @@ namespace rockdd {
 
 class Probes;
 class ContactStage;
+class DamageStage;
+struct DamageChange;
 
 /// What an observer sees after each committed step.
 struct StepReport {
@@ -78,6 +80,15 @@ class Simulation {
   /// Solves one open-close iteration: springs, factorization, solve; fills du_.
   void solve_iteration(long step, const InertiaTerms& inertia);
   void commit_step(double dt);
+  /// The open-close iteration of one step from u_trial_; false when it did not settle.
+  bool open_close_iteration(long step, const InertiaTerms& inertia, StepControl& control);
+  /// Damage laws at the step's result u + du; moduli marked stale when damage grew.
+  DamageChange evaluate_damage();
+  /// After a committed step: damaged elements become blocks, and what hangs on the nodes
+  /// is rebuilt for the new topology.
+  void detach_fractured_elements();
+  /// Ties lone fragments to their place in steps without inertia (fragment_anchor_).
+  void anchor_fragments();
   EnergyBalance energy() const;
   void evaluate_probes(std::vector<double>& row);
   nlohmann::json summary(const RunResult& result, double wall_seconds, int threads) const;
@@ -94,9 +105,14 @@ class Simulation {
   bool corotational_ = false;  // strain in co-rotated element frames (not in static analysis)
   std::unique_ptr<Probes> probes_;
   std::unique_ptr<ContactStage> contact_;      // only for scenes with [[joint]]
+  std::unique_ptr<DamageStage> damage_;        // only for scenes with damageable materials
   std::vector<double> base_values_;            // K + cM without contact springs
   std::vector<double> f_contact_, positions_;  // 2 per node
   long open_close_iterations_ = 0, max_open_close_ = 0;
+  std::vector<double> damage_force_;  // f_int at the step's result, for the damage check
+  long damage_iterations_ = 0, damage_limit_hits_ = 0, detached_elements_ = 0;
+  std::vector<std::uint8_t> detached_;   // per element
+  std::vector<double> fragment_anchor_;  // per node: spring to the step's start (N/m), or 0
 
   // Step state (2 per node unless noted).
   std::vector<double> acceleration_, f_int_, f_ext_, f_ext_old_, reaction_, reaction_old_;

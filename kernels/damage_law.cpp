@@ -93,7 +93,8 @@ DamageUpdate evaluate_damage(const double eps[3], const double sig[3], const Dam
   const double eps_t0 = p.ft0 / p.young;
   double s1, s2;
   principal_values(se[0], se[1], se[2], s1, s2);
-  if (tensile_onset(p.onset, s1, eps_bar, p.ft0, p.young)) {
+  // A law whose strength is not given (<= 0) is off.
+  if (p.ft0 > 0.0 && tensile_onset(p.onset, s1, eps_bar, p.ft0, p.young)) {
     // A stress onset can fire with eps_bar a little below eps_t0 (e.g. biaxial tension):
     // the element is at its peak, so it gets the peak damage 1 - lambda.
     const double w = tensile_damage(std::max(eps_bar, eps_t0), eps_t0, p.lambda, p.eta);
@@ -102,7 +103,7 @@ DamageUpdate evaluate_damage(const double eps[3], const double sig[3], const Dam
 
   double c[3];
   compressive_principal_stresses(se, p.poisson, plane, c);
-  if (mohr_coulomb_onset(c[0], c[2], p.fc0, p.phi)) {
+  if (p.fc0 > 0.0 && mohr_coulomb_onset(c[0], c[2], p.fc0, p.phi)) {
     const double eps_c0 = compressive_threshold_strain(c, p.fc0, p.phi, p.young, p.poisson);
     const double eps_c1 = major_compressive_strain(eps, p.poisson, plane);
     const double w = compressive_damage(std::max(eps_c1, eps_c0), eps_c0, p.lambda);

@@ -95,6 +95,7 @@ double effective_modulus(double young, double w, double floor = kDefaultStiffnes
 /// the strain is taken at least at the threshold, so a fired law gives w >= 1 - lambda.
 /// law != none does not by itself mean growth (an unloaded softening element still meets its
 /// criterion): "newly damaged" is w > w_old. A fully damaged element (w_old >= 1) returns none.
+/// A law whose strength is not positive (ft0 or fc0 <= 0) is off.
 DamageUpdate evaluate_damage(const double eps[3], const double sig[3], const DamageParams& p,
                              PlaneKind plane, double w_old);
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numbers>
 #include <string>
 
@@ -92,6 +93,26 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
     if (joint.normal_stiffness) given_kn = joint.normal_stiffness;
     if (joint.shear_stiffness) given_ks = joint.shear_stiffness;
   }
+  // Fracture faces (METHOD.md "Fracture"): blocks of one body that fracture separated touch
+  // with the "crack" joint's properties, or else the material's friction angle and no
+  // cohesion or tension.
+  if (!model.tensile_strength.empty()) {
+    const JointSpec* crack = nullptr;
+    for (const JointSpec& joint : scene.joints)
+      if (joint.between.size() == 1 && joint.between[0] == "crack") crack = &joint;
+    std::vector<double> body_friction(static_cast<std::size_t>(num_bodies), 0.0);
+    for (std::int32_t e = 0; e < model.num_elements(); ++e)
+      body_friction[model.element_body[e]] =
+          scene.materials[model.element_material[e]].friction_angle.value_or(0.0);
+    for (std::int32_t b = 0; b < num_bodies; ++b) {
+      const std::size_t k = static_cast<std::size_t>(b * num_bodies + b);
+      rules_.allowed[k] = 1;
+      const double phi = crack ? crack->friction_angle : body_friction[b];
+      joint_friction_[k] = std::tan(phi * std::numbers::pi / 180.0);
+      joint_cohesion_[k] = crack ? crack->cohesion : 0.0;
+      joint_tensile_[k] = crack ? crack->tensile_strength : 0.0;
+    }
+  }
   rules_.block_body.assign(static_cast<std::size_t>(model.num_blocks), 0);
   for (std::int32_t e = 0; e < model.num_elements(); ++e)
     rules_.block_body[model.element_block[e]] = model.element_body[e];
@@ -126,6 +147,25 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
     std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
     parameters_.reach = 0.5 * lengths[lengths.size() / 2];
   }
+}
+
+void ContactStage::carry_contacts_from(const ContactStage& old) {
+  // Boundary edges are renumbered; a contact keeps its state if its edge still exists.
+  std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> edge_of;
+  for (std::size_t i = 0; 2 * i + 1 < boundary_.edge_nodes.size(); ++i)
+    edge_of[{boundary_.edge_nodes[2 * i], boundary_.edge_nodes[2 * i + 1]}] =
+        static_cast<std::int32_t>(i);
+  committed_.clear();
+  for (Contact c : old.committed_) {
+    const auto found = edge_of.find({c.a, c.b});
+    if (found == edge_of.end()) continue;
+    c.edge = found->second;
+    committed_.push_back(c);
+  }
+  std::sort(committed_.begin(), committed_.end(), [](const Contact& x, const Contact& y) {
+    return x.vertex != y.vertex ? x.vertex < y.vertex : x.edge < y.edge;
+  });
+  contacts_ = committed_;
 }
 
 bool ContactStage::detect(std::span<const double> positions) {

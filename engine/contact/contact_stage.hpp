@@ -75,6 +75,10 @@ class ContactStage {
   /// accumulates, other contacts forget theirs.
   void commit(std::span<const double> positions);
 
+  /// After fracture rebuilt the blocks: takes over the committed contacts of the stage
+  /// before, where their vertex and edge still exist (node ids survive a split).
+  void carry_contacts_from(const ContactStage& old);
+
   const ContactParameters& parameters() const { return parameters_; }
   std::size_t size() const { return contacts_.size(); }
 

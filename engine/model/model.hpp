@@ -41,6 +41,10 @@ struct Model {
   std::vector<double> density;
   std::vector<double> area0;     // reference area
   std::vector<double> damage;    // w in [0, 1]
+  // Strengths of damageable elements (empty in an elastic scene): ft0, fc0 (Pa), phi (rad).
+  std::vector<double> tensile_strength;
+  std::vector<double> compressive_strength;
+  std::vector<double> friction_angle;
   std::vector<double> rotation;  // angle of each element's co-rotational frame in K (rad)
   std::vector<double> strain;    // 3 per element: exx, eyy, gxy
   std::vector<double> stress;    // 3 per element: sxx, syy, sxy

@@ -160,6 +160,16 @@ Probes::Probes(const Scene& scene, const Model& model) {
   }
 }
 
+void Probes::carry_state_from(const Probes& old) {
+  for (std::size_t i = 0; i < probes_.size() && i < old.probes_.size(); ++i) {
+    probes_[i].rotation = old.probes_[i].rotation;
+    if (old.probes_[i].located) {
+      probes_[i].samples = old.probes_[i].samples;  // elements do not change when nodes split
+      probes_[i].located = true;
+    }
+  }
+}
+
 bool Probes::has_line_probes() const {
   return std::any_of(probes_.begin(), probes_.end(),
                      [](const Resolved& r) { return r.spec->kind == ProbeSpec::Kind::line; });

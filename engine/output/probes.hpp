@@ -29,6 +29,9 @@ class Probes {
   /// Appends the current value of every column to `row`. `reaction` is the force the
   /// constraints exert on each dof (2 per node). Updates cumulative body rotations.
   void evaluate(const Model& model, std::span<const double> reaction, std::vector<double>& row);
+  /// After fracture split nodes, a fresh Probes resolves the new nodes; this keeps what the
+  /// old one had accumulated (cumulative body rotations, located line samples).
+  void carry_state_from(const Probes& old);
   /// Whether any probe is a line probe.
   bool has_line_probes() const;
   /// Writes profiles/<probe>_<step>.csv for every line probe (atomically). The samples are
