@@ -25,7 +25,7 @@ namespace {
 constexpr int kMaxOpenCloseIterations = 12;
 
 /// Spring (fraction of E t) tying a lone fragment to its place in steps without inertia.
-constexpr double kFragmentAnchor = 1e-2;
+constexpr double kFragmentAnchor = 1.0;
 
 /// Re-solves of one step for newly damaged elements before the step goes on regardless.
 constexpr int kMaxDamageIterations = 20;
