@@ -108,7 +108,8 @@ class Simulation {
   std::unique_ptr<DamageStage> damage_;        // only for scenes with damageable materials
   std::vector<double> base_values_;            // K + cM without contact springs
   std::vector<double> f_contact_, positions_;  // 2 per node
-  long open_close_iterations_ = 0, max_open_close_ = 0;
+  long open_close_iterations_ = 0, max_open_close_ = 0, relaxed_steps_ = 0;
+  double largest_relaxation_ = 1.0;   // widest tolerance factor a settled step needed
   std::vector<double> damage_force_;  // f_int at the step's result, for the damage check
   long damage_iterations_ = 0, damage_limit_hits_ = 0, detached_elements_ = 0;
   std::vector<std::uint8_t> detached_;   // per element

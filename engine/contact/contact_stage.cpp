@@ -270,7 +270,8 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
   }
 }
 
-int ContactStage::update_states(std::span<const double> positions, double& largest_penetration) {
+int ContactStage::update_states(std::span<const double> positions, double tolerance_scale,
+                                double& largest_penetration) {
   const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
   largest_penetration = 0.0;
   double largest_gap = 0.0;  // the largest normal force, over kn: penetration or bond tension
@@ -285,7 +286,7 @@ int ContactStage::update_states(std::span<const double> positions, double& large
   // nothing would otherwise flip back and forth forever: a contact changes between open and
   // closed only when its gap leaves the band [-tolerance, tolerance] / kn, and a change of
   // shear force smaller than the tolerance does not hold the iteration back.
-  const double tolerance = parameters_.force_tolerance * kn * largest_gap;
+  const double tolerance = tolerance_scale * parameters_.force_tolerance * kn * largest_gap;
   const double band = tolerance / kn;
   int changes = 0;
   for (Contact& c : contacts_) {

@@ -70,7 +70,10 @@ class ContactStage {
   /// largest penetration. Gaps and slips are the step's linearised ones, the same the solve
   /// used: the exact gap at the end of a step differs from it by O(du^2 / L), which near zero
   /// force is enough to flip a contact back and forth forever.
-  int update_states(std::span<const double> positions, double& largest_penetration);
+  /// `tolerance_scale` widens the force tolerance (1 = force_tolerance of the largest contact
+  /// force) for iterations that chatter.
+  int update_states(std::span<const double> positions, double tolerance_scale,
+                    double& largest_penetration);
   /// Commits a converged step ending at `positions`: the elastic slip of locked contacts
   /// accumulates, other contacts forget theirs.
   void commit(std::span<const double> positions);
