@@ -17,23 +17,6 @@ namespace {
 
 using History = std::map<std::string, std::vector<double>>;
 
-/// Gmsh lines for an axis-aligned rectangle [x0, x1] x [y0, y1] of element size `size`, as
-/// surface `id` (points, lines and loop numbered id + 1 .. id + 4): bottom is line id + 1,
-/// right id + 2, top id + 3, left id + 4.
-std::string rectangle_geo(int id, double x0, double y0, double x1, double y1, double size) {
-  auto num = [](double v) { return std::to_string(v); };
-  auto n = [&](int k) { return std::to_string(id + k); };
-  const std::string s = num(size);
-  return "Point(" + n(1) + ") = {" + num(x0) + ", " + num(y0) + ", 0, " + s + "};\n" + "Point(" +
-         n(2) + ") = {" + num(x1) + ", " + num(y0) + ", 0, " + s + "};\n" + "Point(" + n(3) +
-         ") = {" + num(x1) + ", " + num(y1) + ", 0, " + s + "};\n" + "Point(" + n(4) + ") = {" +
-         num(x0) + ", " + num(y1) + ", 0, " + s + "};\n" + "Line(" + n(1) + ") = {" + n(1) + ", " +
-         n(2) + "};\nLine(" + n(2) + ") = {" + n(2) + ", " + n(3) + "};\nLine(" + n(3) + ") = {" +
-         n(3) + ", " + n(4) + "};\nLine(" + n(4) + ") = {" + n(4) + ", " + n(1) + "};\n" +
-         "Curve Loop(" + n(1) + ") = {" + n(1) + ", " + n(2) + ", " + n(3) + ", " + n(4) +
-         "};\nPlane Surface(" + n(1) + ") = {" + n(1) + "};\n";
-}
-
 /// True when every value in every column of history.csv is finite.
 bool all_finite(const History& h) {
   for (const auto& [name, column] : h)
@@ -71,8 +54,8 @@ TEST(BlockMotion, FreeFall) {
   // covers the pair, so the contact stage runs but never finds a contact in 0.5 s: the block
   // falls 1.25 m). Closed form u_y = -1/2 g t^2 = -1.25 m at t = 0.5 s, within 0.5 %
   // (DDA's constant-acceleration step integrates it exactly; measured to round-off).
-  const std::string geo = rectangle_geo(0, -1.0, -1.0, 1.0, 0.0, 1.0) +
-                          rectangle_geo(10, 0.0, 5.0, 0.1, 5.1, 0.1) +
+  const std::string geo = test::rectangle_geo(0, -1.0, -1.0, 1.0, 0.0, 1.0) +
+                          test::rectangle_geo(10, 0.0, 5.0, 0.1, 5.1, 0.1) +
                           "Physical Surface(\"base\") = {1};\nPhysical Surface(\"block\") = "
                           "{11};\nPhysical Curve(\"base_bottom\") = {1};\n";
   const std::string scene = R"(
@@ -120,8 +103,8 @@ every = 0
 
 /// Two 0.1 m squares, 0.2 mm apart along x: A on the left, B on the right (element 0.05 m).
 std::string two_squares_geo() {
-  return rectangle_geo(0, -0.1001, 0.0, -0.0001, 0.1, 0.05) +
-         rectangle_geo(10, 0.0001, 0.0, 0.1001, 0.1, 0.05) +
+  return test::rectangle_geo(0, -0.1001, 0.0, -0.0001, 0.1, 0.05) +
+         test::rectangle_geo(10, 0.0001, 0.0, 0.1001, 0.1, 0.05) +
          "Physical Surface(\"a\") = {1};\nPhysical Surface(\"b\") = {11};\n";
 }
 
@@ -332,8 +315,8 @@ TEST(StiffAndExtreme, TimeStepHundredTimesTheDefault) {
 /// A 0.05 m block (body "soft") on the middle of a 0.1 m block (body "stiff") fixed at its
 /// bottom; the upper block's corners lie inside the lower top face, away from its nodes.
 std::string contrast_geo() {
-  return rectangle_geo(0, 0.0, 0.0, 0.1, 0.1, 0.05) +
-         rectangle_geo(10, 0.02, 0.1, 0.07, 0.15, 0.025) +
+  return test::rectangle_geo(0, 0.0, 0.0, 0.1, 0.1, 0.05) +
+         test::rectangle_geo(10, 0.02, 0.1, 0.07, 0.15, 0.025) +
          "Physical Surface(\"stiff\") = {1};\nPhysical Surface(\"soft\") = {11};\n"
          "Physical Curve(\"stiff_bottom\") = {1};\nPhysical Curve(\"stiff_top\") = {3};\n"
          "Physical Curve(\"soft_bottom\") = {11};\n";
@@ -431,7 +414,7 @@ TEST(BlockMotion, ColumnOfTenBlocks) {
   //   checked below 1e-6.
   constexpr int kBlocks = 10;
   const double L = 0.1, E = 10e9, W = 2600.0 * L * L * 10.0;
-  std::string geo = rectangle_geo(0, 0.0, -L, L, 0.0, 0.05) +
+  std::string geo = test::rectangle_geo(0, 0.0, -L, L, 0.0, 0.05) +
                     "Physical Surface(\"b0\") = {1};\nPhysical Curve(\"base_bottom\") = {1};\n"
                     "Physical Curve(\"b0_top\") = {3};\n";
   std::string scene = R"(
@@ -465,7 +448,7 @@ every = 0
   for (int j = 1; j <= kBlocks; ++j) {
     const std::string b = "b" + std::to_string(j);
     const int id = 10 * j;
-    geo += rectangle_geo(id, 0.0, (j - 1) * L, L, j * L, 0.05);
+    geo += test::rectangle_geo(id, 0.0, (j - 1) * L, L, j * L, 0.05);
     geo += "Physical Surface(\"" + b + "\") = {" + std::to_string(id + 1) + "};\n";
     geo += "Physical Curve(\"" + b + "_bottom\") = {" + std::to_string(id + 1) + "};\n";
     geo += "Physical Curve(\"" + b + "_top\") = {" + std::to_string(id + 3) + "};\n";
@@ -517,8 +500,8 @@ every = 0
 /// top is one edge: only the block's two bottom corners touch, so the contact is a spring
 /// k = 2 kn. Returns the restitution: rebound speed over impact speed.
 double restitution(double dt, double kn) {
-  const std::string geo = rectangle_geo(0, -0.5, -0.2, 0.5, 0.0, 1.0) +
-                          rectangle_geo(10, -0.05, 0.01, 0.05, 0.11, 0.1) +
+  const std::string geo = test::rectangle_geo(0, -0.5, -0.2, 0.5, 0.0, 1.0) +
+                          test::rectangle_geo(10, -0.05, 0.01, 0.05, 0.11, 0.1) +
                           "Physical Surface(\"base\") = {1};\nPhysical Surface(\"block\") = "
                           "{11};\nPhysical Curve(\"base_bottom\") = {1};\n";
   const std::string scene = R"(

@@ -92,18 +92,12 @@ TEST(SlidingBlock, FrictionSteeperThanTheSlopeHoldsTheBlock) {
 }
 
 /// A 1 m x 0.5 m block on a 4 m x 1 m base, meshed separately (two blocks).
-constexpr const char* kBlockOnBase = R"(
-Point(1) = {0, 0, 0, 0.5}; Point(2) = {4, 0, 0, 0.5}; Point(3) = {4, 1, 0, 0.5};
-Point(4) = {0, 1, 0, 0.5};
-Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
-Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
-Point(11) = {0.5, 1, 0, 0.25}; Point(12) = {1.5, 1, 0, 0.25}; Point(13) = {1.5, 1.5, 0, 0.25};
-Point(14) = {0.5, 1.5, 0, 0.25};
-Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14}; Line(14) = {14, 11};
-Curve Loop(11) = {11, 12, 13, 14}; Plane Surface(11) = {11};
-Physical Surface("base") = {1}; Physical Surface("block") = {11};
-Physical Curve("base_bottom") = {1};
-)";
+std::string block_on_base_geo() {
+  return test::rectangle_geo(0, 0.0, 0.0, 4.0, 1.0, 0.5) +
+         test::rectangle_geo(10, 0.5, 1.0, 1.5, 1.5, 0.25) +
+         "Physical Surface(\"base\") = {1};\nPhysical Surface(\"block\") = {11};\n"
+         "Physical Curve(\"base_bottom\") = {1};\n";
+}
 
 constexpr const char* kBlockOnBaseScene = R"(
 [scene]
@@ -145,7 +139,7 @@ TEST(Friction, BrakesABlockSlidingOnAFlatBase) {
   // Without friction it keeps v0 (checked to 1e-5 m/s).
   const double mu = std::tan(20.0 * std::numbers::pi / 180.0), g = 10.0, v0 = 2.0;
   const auto run =
-      test::run_scene_text(kBlockOnBaseScene, {}, 0, {{"block_on_base.geo", kBlockOnBase}});
+      test::run_scene_text(kBlockOnBaseScene, {}, 0, {{"block_on_base.geo", block_on_base_geo()}});
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   const auto& t = run.history.at("time");
   const auto& vx = run.history.at("block.vx");
@@ -158,25 +152,19 @@ TEST(Friction, BrakesABlockSlidingOnAFlatBase) {
   EXPECT_LT(std::abs(vx.back()), 1e-3);  // and stays stopped
 
   const auto free = test::run_scene_text(kBlockOnBaseScene, {"joint.0.friction_angle=0"}, 0,
-                                         {{"block_on_base.geo", kBlockOnBase}});
+                                         {{"block_on_base.geo", block_on_base_geo()}});
   ASSERT_TRUE(free.result.ok) << free.result.reason;
   EXPECT_NEAR(free.history.at("block.vx").back(), v0, 1e-5);
   EXPECT_NEAR(free.history.at("block.ux").back(), v0 * 0.8, 1e-5);
 }
 
 /// A 1 m x 0.5 m block glued under a fixed 4 m x 1 m ledge.
-constexpr const char* kHangingBlock = R"(
-Point(1) = {0, 0, 0, 0.5}; Point(2) = {4, 0, 0, 0.5}; Point(3) = {4, 1, 0, 0.5};
-Point(4) = {0, 1, 0, 0.5};
-Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
-Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
-Point(11) = {1.5, -0.5, 0, 0.25}; Point(12) = {2.5, -0.5, 0, 0.25}; Point(13) = {2.5, 0, 0, 0.25};
-Point(14) = {1.5, 0, 0, 0.25};
-Line(11) = {11, 12}; Line(12) = {12, 13}; Line(13) = {13, 14}; Line(14) = {14, 11};
-Curve Loop(11) = {11, 12, 13, 14}; Plane Surface(11) = {11};
-Physical Surface("ledge") = {1}; Physical Surface("block") = {11};
-Physical Curve("ledge_top") = {3};
-)";
+std::string hanging_block_geo() {
+  return test::rectangle_geo(0, 0.0, 0.0, 4.0, 1.0, 0.5) +
+         test::rectangle_geo(10, 1.5, -0.5, 2.5, 0.0, 0.25) +
+         "Physical Surface(\"ledge\") = {1};\nPhysical Surface(\"block\") = {11};\n"
+         "Physical Curve(\"ledge_top\") = {3};\n";
+}
 
 TEST(Joints, BondWithTensileStrengthHoldsAHangingBlockUntilTooWeak) {
   // The block (13 kN) hangs from a bonded joint 1 m long: the mean tension is 13 kPa, and
@@ -214,12 +202,12 @@ every = 0
 )";
   const auto strong =
       test::run_scene_text(scene, {"joint.0.tensile_strength=65e3", "joint.0.cohesion=65e3"}, 0,
-                           {{"hanging.geo", kHangingBlock}});
+                           {{"hanging.geo", hanging_block_geo()}});
   ASSERT_TRUE(strong.result.ok) << strong.result.reason;
   EXPECT_LT(std::abs(strong.history.at("block.uy").back()), 1e-5);
   const auto weak =
       test::run_scene_text(scene, {"joint.0.tensile_strength=6.5e3", "joint.0.cohesion=6.5e3"}, 0,
-                           {{"hanging.geo", kHangingBlock}});
+                           {{"hanging.geo", hanging_block_geo()}});
   ASSERT_TRUE(weak.result.ok) << weak.result.reason;
   EXPECT_NEAR(weak.history.at("block.uy").back(), -0.5 * 10.0 * 0.09, 0.001 * 0.45);
 }
