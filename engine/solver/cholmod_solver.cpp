@@ -3,9 +3,14 @@
 #include <cholmod.h>
 #include <malloc.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "engine/errors.hpp"
 #include "engine/solver/serial_openmp_regions.hpp"
@@ -43,15 +48,30 @@ class BlasThreads {
 /// CHOLMOD allocates its supernodal workspace on every factorization. glibc serves blocks
 /// above 128 KiB with mmap and returns them at free, so each factorization page-faults its
 /// workspace in again (at 1e6 dofs: 1.85 s instead of 1.69 s). Keeping large blocks in the
-/// heap lets the next factorization reuse the same memory. Done once per process.
+/// heap lets the next factorization reuse the same memory. The heap is never trimmed either:
+/// a factor that updates turned simplicial is freed whole at the next factorization (1.3 GB at
+/// 1e6 dofs), and with a 1 GiB trim threshold that memory went back to the system and was
+/// page-faulted in again by the new factor and the next conversion (conversion 0.4-1.3 s
+/// instead of 0.17 s, factorization 2.3-2.6 s instead of 1.7-1.9 s). Done once per process.
 void keep_large_blocks_in_heap() {
   static const bool done = [] {
     mallopt(M_MMAP_THRESHOLD, 1 << 30);
-    mallopt(M_TRIM_THRESHOLD, 1 << 30);
+    mallopt(M_TRIM_THRESHOLD, -1);
     return true;
   }();
   (void)done;
 }
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Before any update has been timed on a pattern, update_expected_faster() assumes that one
+/// refactorization costs as much as kBreakEvenPerRootN * sqrt(n) update columns and
+/// kConversionPerFactor refactorizations per conversion to simplicial form (bench_open_close,
+/// 2D CST meshes and a pile of blocks, 1e4 to 1e6 dofs; see docs/benchmarks.md).
+constexpr double kBreakEvenPerRootN = 0.5;
+constexpr double kConversionPerFactor = 0.15;
 
 }  // namespace
 
@@ -59,12 +79,26 @@ struct CholmodSolver::State {
   cholmod_common common{};
   SparsityPattern pattern;
   cholmod_sparse matrix{};
-  cholmod_factor* factor = nullptr;
+  cholmod_factor* symbolic = nullptr;  // supernodal symbolic factor from the analysis
+  cholmod_factor* factor = nullptr;    // numeric: supernodal LL^T, or simplicial LDL^T
+  bool factor_ready = false;           // factor holds a usable factorization
   cholmod_dense* x = nullptr;
   cholmod_dense* y_work = nullptr;
   cholmod_dense* e_work = nullptr;
   cholmod_dense rhs{};
   int blas_threads = 1;
+  // Low-rank updates: the inverse of the fill-reducing permutation, and C in CSC with its
+  // rows permuted (cholmod_updown works in the factor's ordering).
+  std::vector<std::int32_t> inverse_perm;
+  std::vector<std::int32_t> c_p, c_i, unordered_p, unordered_i, first_row, column_order;
+  std::vector<double> c_x, unordered_x;
+  std::vector<std::pair<std::int32_t, double>> entries;
+  std::vector<std::uint32_t> visited;  // per column of L: stamp of the last downdate check
+  std::uint32_t stamp = 0;
+  // Measured costs on this pattern, for update_expected_faster().
+  double conversion_seconds = -1.0;  // the last supernodal -> simplicial conversion
+  double update_seconds = 0.0;       // updates without their conversions...
+  std::int64_t timed_columns = 0;    // ...and their columns
 
   State() {
     cholmod_start(&common);
@@ -78,6 +112,7 @@ struct CholmodSolver::State {
     cholmod_free_dense(&y_work, &common);
     cholmod_free_dense(&e_work, &common);
     cholmod_free_factor(&factor, &common);
+    cholmod_free_factor(&symbolic, &common);
     cholmod_finish(&common);
   }
 
@@ -97,6 +132,81 @@ struct CholmodSolver::State {
     matrix.sorted = 1;
     matrix.packed = 1;
   }
+
+  /// Builds P C in c_p/c_i/c_x: each column's rows mapped through the inverse permutation,
+  /// sorted, repeated rows summed, prescribed (negative) rows and empty columns dropped; the
+  /// columns ordered by their first row, so that the (up to 8) columns CHOLMOD takes per pass
+  /// start close together in the elimination tree and share most of their paths to the root.
+  void permute_terms(const LowRankTerms& terms) {
+    const std::int32_t k = terms.num_columns();
+    unordered_p.assign(1, 0);
+    unordered_i.clear();
+    unordered_x.clear();
+    first_row.clear();
+    for (std::int32_t j = 0; j < k; ++j) {
+      entries.clear();
+      for (std::int32_t q = terms.col_ptr[j]; q < terms.col_ptr[j + 1]; ++q) {
+        const std::int32_t r = terms.row[q];
+        if (r < 0) continue;
+        if (r >= pattern.n)
+          throw std::invalid_argument("LowRankTerms: equation " + std::to_string(r) +
+                                      " out of range (n = " + std::to_string(pattern.n) + ")");
+        entries.emplace_back(inverse_perm[r], terms.value[q]);
+      }
+      if (entries.empty()) continue;
+      std::sort(entries.begin(), entries.end(),
+                [](const auto& a, const auto& b) { return a.first < b.first; });
+      first_row.push_back(entries.front().first);
+      for (std::size_t e = 0; e < entries.size(); ++e) {
+        if (e > 0 && entries[e].first == entries[e - 1].first) {
+          unordered_x.back() += entries[e].second;
+          continue;
+        }
+        unordered_i.push_back(entries[e].first);
+        unordered_x.push_back(entries[e].second);
+      }
+      unordered_p.push_back(static_cast<std::int32_t>(unordered_i.size()));
+    }
+    const auto columns = static_cast<std::int32_t>(first_row.size());
+    column_order.resize(static_cast<std::size_t>(columns));
+    for (std::int32_t j = 0; j < columns; ++j) column_order[j] = j;
+    std::stable_sort(column_order.begin(), column_order.end(),
+                     [&](std::int32_t a, std::int32_t b) { return first_row[a] < first_row[b]; });
+    c_p.assign(1, 0);
+    c_i.clear();
+    c_x.clear();
+    for (const std::int32_t j : column_order) {
+      c_i.insert(c_i.end(), unordered_i.begin() + unordered_p[j],
+                 unordered_i.begin() + unordered_p[j + 1]);
+      c_x.insert(c_x.end(), unordered_x.begin() + unordered_p[j],
+                 unordered_x.begin() + unordered_p[j + 1]);
+      c_p.push_back(static_cast<std::int32_t>(c_i.size()));
+    }
+  }
+
+  /// After a downdate: the first column j of D <= 0 on the paths that C touched (from each
+  /// column's first row up the elimination tree to the root), or -1. cholmod_updown itself
+  /// does not report a downdate that loses positive definiteness.
+  std::int32_t first_nonpositive_pivot() {
+    const auto* lp = static_cast<const std::int32_t*>(factor->p);
+    const auto* li = static_cast<const std::int32_t*>(factor->i);
+    const auto* lnz = static_cast<const std::int32_t*>(factor->nz);
+    const auto* lx = static_cast<const double*>(factor->x);
+    if (visited.size() != factor->n) visited.assign(factor->n, 0);
+    if (++stamp == 0) {
+      std::fill(visited.begin(), visited.end(), 0);
+      stamp = 1;
+    }
+    std::int32_t worst = -1;
+    for (std::size_t c = 0; c + 1 < c_p.size(); ++c) {
+      for (std::int32_t j = c_i[c_p[c]]; j >= 0 && visited[j] != stamp;
+           j = lnz[j] > 1 ? li[lp[j] + 1] : -1) {
+        visited[j] = stamp;
+        if (!(lx[lp[j]] > 0.0) && (worst < 0 || j < worst)) worst = j;
+      }
+    }
+    return worst;
+  }
 };
 
 CholmodSolver::CholmodSolver() : state_(std::make_unique<State>()) {
@@ -104,35 +214,69 @@ CholmodSolver::CholmodSolver() : state_(std::make_unique<State>()) {
 }
 CholmodSolver::~CholmodSolver() = default;
 
+void LowRankTerms::add_column(std::span<const std::int32_t> rows, std::span<const double> values) {
+  if (rows.size() != values.size())
+    throw std::invalid_argument("LowRankTerms::add_column: rows and values differ in size");
+  row.insert(row.end(), rows.begin(), rows.end());
+  value.insert(value.end(), values.begin(), values.end());
+  col_ptr.push_back(static_cast<std::int32_t>(row.size()));
+}
+
+void LowRankTerms::clear() {
+  col_ptr.assign(1, 0);
+  row.clear();
+  value.clear();
+}
+
 bool CholmodSolver::analyzed() const {
-  return state_->factor != nullptr;
+  return state_->symbolic != nullptr;
+}
+
+bool CholmodSolver::supernodal() const {
+  return state_->factor != nullptr && state_->factor->is_super;
 }
 
 void CholmodSolver::analyze(const SparsityPattern& pattern) {
   State& s = *state_;
   SerialOpenMpRegions serial;
   cholmod_free_factor(&s.factor, &s.common);
+  cholmod_free_factor(&s.symbolic, &s.common);
+  s.factor_ready = false;
   s.pattern = pattern;
   s.point_matrix_at(nullptr);
-  s.factor = cholmod_analyze(&s.matrix, &s.common);
-  if (s.factor == nullptr || s.common.status < CHOLMOD_OK)
+  s.symbolic = cholmod_analyze(&s.matrix, &s.common);
+  if (s.symbolic == nullptr || s.common.status < CHOLMOD_OK)
     throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.common.status) +
                              ")");
   // The analysis leaves the factorization's flop count in Common->fl.
   s.blas_threads = s.common.fl > kParallelBlasFlops ? openblas_get_num_threads() : 1;
+  const auto* perm = static_cast<const std::int32_t*>(s.symbolic->Perm);
+  s.conversion_seconds = -1.0;
+  s.update_seconds = 0.0;
+  s.timed_columns = 0;
+  s.inverse_perm.resize(static_cast<std::size_t>(pattern.n));
+  for (std::int32_t k = 0; k < pattern.n; ++k) s.inverse_perm[perm[k]] = k;
   ++stats_.analyses;
 }
 
 void CholmodSolver::factorize(const double* values) {
   State& s = *state_;
-  if (s.factor == nullptr) throw std::logic_error("CholmodSolver::factorize before analyze");
+  if (s.symbolic == nullptr) throw std::logic_error("CholmodSolver::factorize before analyze");
   SerialOpenMpRegions serial;
   BlasThreads blas(s.blas_threads);
+  s.factor_ready = false;
+  // A supernodal factor is refactorized in place. One that updates turned simplicial cannot
+  // go back (CHOLMOD converts only symbolic factors to supernodal): start again from a copy
+  // of the analysis, which is cheap next to the factorization.
+  if (s.factor == nullptr || !s.factor->is_super) {
+    cholmod_free_factor(&s.factor, &s.common);
+    s.factor = cholmod_copy_factor(s.symbolic, &s.common);
+    if (s.factor == nullptr) throw RunFailure("CHOLMOD: out of memory copying the analysis");
+  }
   s.point_matrix_at(const_cast<double*>(values));  // CHOLMOD only reads A
   const auto start = std::chrono::steady_clock::now();
   cholmod_factorize(&s.matrix, s.factor, &s.common);
-  stats_.last_factor_seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  stats_.last_factor_seconds = seconds_since(start);
   stats_.last_factor_flops = s.common.fl;
   ++stats_.factorizations;
   if (s.common.status == CHOLMOD_NOT_POSDEF) {
@@ -143,10 +287,87 @@ void CholmodSolver::factorize(const double* values) {
   if (s.common.status < CHOLMOD_OK)
     throw RunFailure("CHOLMOD factorization failed (status " + std::to_string(s.common.status) +
                      ")");
+  s.factor_ready = true;
+}
+
+void CholmodSolver::update(const LowRankTerms& terms, bool add) {
+  State& s = *state_;
+  if (!s.factor_ready) throw std::logic_error("CholmodSolver::update without a factorization");
+  const bool consistent = !terms.col_ptr.empty() && terms.col_ptr.front() == 0 &&
+                          terms.row.size() == terms.value.size() &&
+                          static_cast<std::size_t>(terms.col_ptr.back()) == terms.row.size() &&
+                          std::is_sorted(terms.col_ptr.begin(), terms.col_ptr.end());
+  if (!consistent) throw std::invalid_argument("LowRankTerms: col_ptr, row and value disagree");
+  const auto start = std::chrono::steady_clock::now();
+  s.permute_terms(terms);
+  const auto columns = static_cast<std::int32_t>(s.c_p.size()) - 1;
+  if (columns == 0) return;
+  SerialOpenMpRegions serial;
+  double conversion = 0.0;
+  if (s.factor->is_super) {
+    // Simplicial LDL^T, packed, columns in order: the form cholmod_updown modifies in place
+    // (it would convert any other form itself, to the same).
+    const auto convert_start = std::chrono::steady_clock::now();
+    if (!cholmod_change_factor(CHOLMOD_REAL, false, false, true, true, s.factor, &s.common)) {
+      s.factor_ready = false;
+      throw RunFailure("CHOLMOD could not convert the factor for an update (status " +
+                       std::to_string(s.common.status) + ")");
+    }
+    conversion = seconds_since(convert_start);
+    s.conversion_seconds = conversion;
+    ++stats_.simplicial_conversions;
+  }
+  cholmod_sparse c{};
+  c.nrow = static_cast<std::size_t>(s.pattern.n);
+  c.ncol = static_cast<std::size_t>(columns);
+  c.nzmax = s.c_i.size();
+  c.p = s.c_p.data();
+  c.i = s.c_i.data();
+  c.x = s.c_x.data();
+  c.stype = 0;
+  c.itype = CHOLMOD_INT;
+  c.xtype = CHOLMOD_REAL;
+  c.dtype = CHOLMOD_DOUBLE;
+  c.sorted = 1;
+  c.packed = 1;
+  const int ok = cholmod_updown(add, &c, s.factor, &s.common);
+  ++stats_.updates;
+  stats_.updated_columns += columns;
+  stats_.last_update_seconds = seconds_since(start);
+  s.update_seconds += stats_.last_update_seconds - conversion;
+  s.timed_columns += columns;
+  if (!ok || s.common.status < CHOLMOD_OK) {
+    s.factor_ready = false;
+    throw RunFailure("CHOLMOD update failed (status " + std::to_string(s.common.status) + ")");
+  }
+  if (!add) {
+    const std::int32_t column = s.first_nonpositive_pivot();
+    if (column >= 0) {
+      s.factor_ready = false;
+      throw RunFailure("the system matrix is not positive definite after a downdate (pivot " +
+                       std::to_string(column) + " of " + std::to_string(s.pattern.n) + ")");
+    }
+  }
+}
+
+bool CholmodSolver::update_expected_faster(std::int64_t columns) const {
+  const State& s = *state_;
+  if (!s.factor_ready || stats_.factorizations == 0) return false;
+  if (columns <= 0) return true;
+  const double refactor = stats_.last_factor_seconds;
+  const double per_column =
+      s.timed_columns > 0
+          ? s.update_seconds / static_cast<double>(s.timed_columns)
+          : refactor / (kBreakEvenPerRootN * std::sqrt(static_cast<double>(s.pattern.n)));
+  double cost = static_cast<double>(columns) * per_column;
+  if (s.factor->is_super)
+    cost += s.conversion_seconds >= 0.0 ? s.conversion_seconds : kConversionPerFactor * refactor;
+  return cost < refactor;
 }
 
 void CholmodSolver::solve(const double* b, double* x) {
   State& s = *state_;
+  if (!s.factor_ready) throw std::logic_error("CholmodSolver::solve without a factorization");
   SerialOpenMpRegions serial;
   const auto n = static_cast<std::size_t>(s.pattern.n);
   s.rhs.nrow = n;
@@ -157,7 +378,8 @@ void CholmodSolver::solve(const double* b, double* x) {
   s.rhs.z = nullptr;
   s.rhs.xtype = CHOLMOD_REAL;
   s.rhs.dtype = CHOLMOD_DOUBLE;
-  // cholmod_solve2 reuses x and the workspaces across calls: no allocation per solve.
+  // cholmod_solve2 reuses x and the workspaces across calls: no allocation per solve. It
+  // takes either form of the factor.
   cholmod_solve2(CHOLMOD_A, s.factor, &s.rhs, nullptr, &s.x, nullptr, &s.y_work, &s.e_work,
                  &s.common);
   if (s.x == nullptr || s.common.status < CHOLMOD_OK) throw RunFailure("CHOLMOD solve failed");
