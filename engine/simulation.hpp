@@ -77,8 +77,9 @@ class Simulation {
   void prepare_system(double mass_coefficient);
   /// Pattern of elements plus current contact triples; CHOLMOD analysis of it.
   void rebuild_layout();
-  /// Solves one open-close iteration: springs, factorization, solve; fills du_.
-  void solve_iteration(long step, const InertiaTerms& inertia);
+  /// Solves one open-close iteration: springs, factorization (unless `factor_current`: the
+  /// factor was updated for the springs that switched), solve; fills du_.
+  void solve_iteration(long step, const InertiaTerms& inertia, bool factor_current = false);
   void commit_step(double dt);
   /// The open-close iteration of one step from u_trial_; false when it did not settle.
   bool open_close_iteration(long step, const InertiaTerms& inertia, StepControl& control);
@@ -109,7 +110,8 @@ class Simulation {
   std::vector<double> base_values_;            // K + cM without contact springs
   std::vector<double> f_contact_, positions_;  // 2 per node
   long open_close_iterations_ = 0, max_open_close_ = 0, relaxed_steps_ = 0;
-  double largest_relaxation_ = 1.0;   // widest tolerance factor a settled step needed
+  double largest_relaxation_ = 1.0;               // widest tolerance factor a settled step needed
+  LowRankTerms springs_added_, springs_removed_;  // contact springs switched in an iteration
   std::vector<double> damage_force_;  // f_int at the step's result, for the damage check
   long damage_iterations_ = 0, damage_limit_hits_ = 0, detached_elements_ = 0;
   std::vector<std::uint8_t> detached_;   // per element

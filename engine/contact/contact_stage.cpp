@@ -149,6 +149,42 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   }
 }
 
+std::vector<ContactState> ContactStage::states() const {
+  std::vector<ContactState> out(contacts_.size());
+  for (std::size_t i = 0; i < contacts_.size(); ++i) out[i] = contacts_[i].state;
+  return out;
+}
+
+void ContactStage::spring_changes(std::span<const ContactState> before,
+                                  std::span<const std::int32_t> equation, LowRankTerms& added,
+                                  LowRankTerms& removed) const {
+  added.clear();
+  removed.clear();
+  auto column = [&](const Contact& c, const double v[6], double k, LowRankTerms& out) {
+    const std::int32_t nodes[3] = {c.vertex, c.a, c.b};
+    std::int32_t rows[6];
+    double values[6];
+    const double scale = std::sqrt(k);
+    for (int n = 0; n < 3; ++n)
+      for (int d = 0; d < 2; ++d) {
+        rows[2 * n + d] = equation[2 * static_cast<std::size_t>(nodes[n]) + d];
+        values[2 * n + d] = scale * v[2 * n + d];
+      }
+    out.add_column(rows, values);
+  };
+  for (std::size_t i = 0; i < contacts_.size(); ++i) {
+    const Contact& c = contacts_[i];
+    const bool normal_was = before[i] != ContactState::open,
+               normal_is = c.state != ContactState::open;
+    const bool shear_was = before[i] == ContactState::locked,
+               shear_is = c.state == ContactState::locked;
+    if (normal_was != normal_is)
+      column(c, c.g, parameters_.normal_stiffness, normal_is ? added : removed);
+    if (shear_was != shear_is)
+      column(c, c.t, parameters_.shear_stiffness, shear_is ? added : removed);
+  }
+}
+
 void ContactStage::carry_contacts_from(const ContactStage& old) {
   // Boundary edges are renumbered; a contact keeps its state if its edge still exists.
   std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> edge_of;

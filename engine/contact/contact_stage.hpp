@@ -14,6 +14,7 @@
 #include "engine/contact/contact_detection.hpp"
 #include "engine/model/model.hpp"
 #include "engine/scene/scene.hpp"
+#include "engine/solver/cholmod_solver.hpp"
 
 namespace rockdd {
 
@@ -77,6 +78,14 @@ class ContactStage {
   /// Commits a converged step ending at `positions`: the elastic slip of locked contacts
   /// accumulates, other contacts forget theirs.
   void commit(std::span<const double> positions);
+
+  /// The states of all contacts, in order (to compare before and after an update).
+  std::vector<ContactState> states() const;
+  /// The springs that differ between `before` (from states()) and the current states, as
+  /// columns sqrt(k) g over the equations `equation` (per dof, -1 when prescribed): a normal
+  /// spring kn g g^T is on unless open, a shear spring ks t t^T only when locked.
+  void spring_changes(std::span<const ContactState> before, std::span<const std::int32_t> equation,
+                      LowRankTerms& added, LowRankTerms& removed) const;
 
   /// After fracture rebuilt the blocks: takes over the committed contacts of the stage
   /// before, where their vertex and edge still exist (node ids survive a split).
