@@ -40,9 +40,11 @@ BlockBoundary extract_block_boundary(const Model& model);
 /// `reach` of the edge segment at current positions (`positions`, 2 per node). For each
 /// vertex and each other block only the edge with the largest signed gap is kept (at a convex
 /// corner: the face the vertex is least behind). Sorted by (vertex, edge):
-/// the same list whatever the thread count.
+/// the same list whatever the thread count. `inflation` (the step's largest displacement)
+/// only widens the broad phase's boxes: the list depends on `reach` alone.
 std::vector<ContactCandidate> detect_contacts(const BlockBoundary& boundary,
                                               std::span<const double> positions,
-                                              const ContactRules& rules, double reach);
+                                              const ContactRules& rules, double reach,
+                                              double inflation = 0.0);
 
 }  // namespace rockdd
