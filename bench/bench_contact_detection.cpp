@@ -21,8 +21,9 @@ namespace {
 constexpr double kInflation = 0.01;
 
 /// n square blocks (two triangles each, one body) of side 0.8-0.9, rotated by up to 5 degrees,
-/// centred on a unit grid jittered by 0.01: neighbours face each other across gaps of 0-0.2
-/// (a few touch), so every block has its four sides within reach of others, as in a pile.
+/// centred on a unit grid jittered by 0.01: neighbours face each other across gaps of 0-0.2,
+/// within the reach of 0.42, so every block has its four sides and corners near others (12
+/// candidates per block), as in a settled pile.
 Model random_pile(long n) {
   std::mt19937_64 rng(42);
   std::uniform_real_distribution<double> side(0.8, 0.9),
@@ -65,8 +66,8 @@ struct Setup {
 Setup& setup_for(long blocks) {
   // The engine's process keeps large blocks in the heap (CholmodSolver sets this for the whole
   // process, engine/solver/cholmod_solver.cpp): detection then reuses the memory of the previous
-  // call. Without it glibc maps and unmaps its large arrays on every call, and their page
-  // faults cost a sixth of the time at 1e5 blocks.
+  // call. Without it glibc maps and unmaps its large arrays on every call, and page-faults them
+  // in again (1e5 blocks, one thread: 491 instead of 356 ms).
   static const bool heap = [] {
     mallopt(M_MMAP_THRESHOLD, 1 << 30);
     mallopt(M_TRIM_THRESHOLD, -1);
