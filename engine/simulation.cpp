@@ -23,6 +23,10 @@ namespace {
 
 /// Open-close iterations allowed in one step before it is redone with dt / 2.
 constexpr int kMaxOpenCloseIterations = 12;
+/// Contacts that swing between answers may settle on their last one only in a step already
+/// redone this many times (a smaller dt did not help), and only in its closing iterations.
+constexpr int kRetriesBeforeSettling = 2;
+constexpr int kSettlingIterations = 2;
 
 /// Doublings of the open-close force tolerance allowed to a chattering step (at most 4x).
 constexpr int kMaxRelaxationDoublings = 2;
@@ -173,7 +177,8 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
   }
 }
 
-bool Simulation::attempt_step(long step, double dt, double load_factor, StepControl& control) {
+bool Simulation::attempt_step(long step, int retries, double dt, double load_factor,
+                              StepControl& control) {
   const InertiaTerms inertia = inertia_terms(scene_.analysis, scene_.time.integrator, dt);
   const std::size_t num_dofs = model_.X.size();
   if (contact_) {
@@ -206,7 +211,7 @@ bool Simulation::attempt_step(long step, double dt, double load_factor, StepCont
   // The damage iteration (METHOD.md): while elements newly damage, re-solve the same step
   // with their reduced moduli.
   for (int pass = 1;; ++pass) {
-    if (!open_close_iteration(step, inertia, control)) return false;
+    if (!open_close_iteration(step, retries, inertia, control)) return false;
     if (!damage_) break;
     const DamageChange change = evaluate_damage();
     if (change.newly_damaged == 0) break;
@@ -243,7 +248,7 @@ DamageChange Simulation::evaluate_damage() {
   return change;
 }
 
-bool Simulation::open_close_iteration(long step, const InertiaTerms& inertia,
+bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms& inertia,
                                       StepControl& control) {
   const std::size_t num_dofs = model_.X.size();
   // The open-close iteration (a single solve without contacts): assume states, solve, check.
@@ -264,7 +269,11 @@ bool Simulation::open_close_iteration(long step, const InertiaTerms& inertia,
       // and the summary counts the steps that needed it.
       const int past = std::min(iterations - kMaxOpenCloseIterations / 2, kMaxRelaxationDoublings);
       const double scale = past > 0 ? std::ldexp(1.0, past) : 1.0;
-      changes = contact_->update_states(positions_, scale, penetration);
+      // Last resort, in the closing iterations of a step already redone kRetriesBeforeSettling
+      // times: contacts that keep swinging between two answers settle on their last one.
+      const bool settle = retries >= kRetriesBeforeSettling &&
+                          iterations > kMaxOpenCloseIterations - kSettlingIterations;
+      changes = contact_->update_states(positions_, scale, settle, penetration);
       if (changes == 0 && scale > 1.0) {
         ++relaxed_steps_;
         largest_relaxation_ = std::max(largest_relaxation_, scale);
@@ -318,9 +327,11 @@ void Simulation::commit_step(double dt) {
   if (contact_) {
     ScopedTimer timer(timers_.contact);
     for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + model_.u[d];
-    contact_->commit(positions_);
+    // The step's contact forces before the commit folds the step's slip into the shear
+    // springs' anchors: after it they would count that slip twice.
     std::fill(f_contact_.begin(), f_contact_.end(), 0.0);
     contact_->add_springs(positions_, layout_, model_.num_elements(), {}, f_contact_);
+    contact_->commit(positions_);
   }
   // The constraints' force on the body, and the work of all external forces (trapezoidal).
   double work = 0.0;
@@ -442,7 +453,9 @@ RunResult Simulation::run(const RunOptions& options) {
     while (t < end_time * (1.0 - 1e-12)) {
       const long step = steps_ + 1;
       double dt = std::min(control.dt(), end_time - t);
-      while (!attempt_step(step, dt, load_factor(scene_.analysis, t + dt, end_time), control)) {
+      for (int retries = 0; !attempt_step(step, retries, dt,
+                                          load_factor(scene_.analysis, t + dt, end_time), control);
+           ++retries) {
         ++redone_steps_;
         dt = std::min(control.dt(), end_time - t);
       }
@@ -489,6 +502,8 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
   s["open_close_iterations"] = open_close_iterations_;
   s["max_open_close_per_step"] = max_open_close_;
   s["open_close_relaxed_steps"] = relaxed_steps_;
+  s["open_close_shear_swings_settled"] = contact_ ? contact_->shear_swings_settled() : 0;
+  s["open_close_normal_swings_settled"] = contact_ ? contact_->normal_swings_settled() : 0;
   s["open_close_largest_relaxation"] = largest_relaxation_;
   s["damage_iterations"] = damage_iterations_;
   s["damage_iteration_limit_hits"] = damage_limit_hits_;

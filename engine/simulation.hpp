@@ -70,8 +70,9 @@ class Simulation {
   const StageTimers& timers() const { return timers_; }
 
  private:
-  /// One step attempt of length dt from the committed state; returns the increment.
-  bool attempt_step(long step, double dt, double load_factor, StepControl& control);
+  /// One step attempt of length dt from the committed state (`retries` earlier attempts of
+  /// this step failed); false when it must be redone.
+  bool attempt_step(long step, int retries, double dt, double load_factor, StepControl& control);
   /// Reassembles K + cM (into base_values_ with contacts, values_ without) when the mass
   /// coefficient, the moduli or the pattern changed; without contacts also refactorizes.
   void prepare_system(double mass_coefficient);
@@ -82,7 +83,8 @@ class Simulation {
   void solve_iteration(long step, const InertiaTerms& inertia, bool factor_current = false);
   void commit_step(double dt);
   /// The open-close iteration of one step from u_trial_; false when it did not settle.
-  bool open_close_iteration(long step, const InertiaTerms& inertia, StepControl& control);
+  bool open_close_iteration(long step, int retries, const InertiaTerms& inertia,
+                            StepControl& control);
   /// Damage laws at the step's result u + du; moduli marked stale when damage grew.
   DamageChange evaluate_damage();
   /// After a committed step: damaged elements become blocks, and what hangs on the nodes

@@ -38,11 +38,29 @@ using VertexTree =
 /// not a contact, and would otherwise catch it with the full distance as penetration.
 constexpr double kFacingMargin = 0.05;
 
-/// A candidate with what the reduction needs: the block pair and the distance.
+/// A vertex within this fraction of an edge's length from one of its ends sits on that corner:
+/// the direction between the two is round-off and deformation, not an approach direction,
+/// so it cannot tell which of the corner's two faces the vertex would enter through.
+constexpr double kCornerFraction = 1e-3;
+
+/// A face of the vertex's block and a face of the other block leaving a shared corner lie on
+/// each other (the two sides of one crack) when their directions agree within this cosine
+/// (about 10 degrees).
+constexpr double kOverlappingFaces = 0.985;
+
+/// How a vertex meets an edge, in the reduction's order of preference.
+enum class Meeting : std::uint8_t {
+  shared_face,  // on the edge's corner, one of its own faces along the edge: a split crack face
+  on_corner,    // on the edge's corner with no face along it: no contact with this block
+  inside,       // projects inside the edge
+  near_corner,  // projects past an end: vertex-vertex, the face it is least behind wins
+};
+
+/// A candidate with what the reduction needs: the block pair, the gap and how they meet.
 struct Found {
   std::int32_t vertex, edge, edge_block;  // vertex: index into BlockBoundary's vertices
   double gap;
-  bool interior;  // the vertex projects inside the edge, not past one of its ends
+  Meeting meeting;
 };
 
 /// Indices i with keep[i] != 0, ascending: counted per chunk, then written in parallel.
@@ -66,9 +84,11 @@ std::vector<std::int32_t> flagged_indices(std::span<const std::uint8_t> keep) {
 }
 
 /// Unit outward normals (2 each) of the boundary edges that touch a searched vertex, and of
-/// the searched vertices; the others are left at zero.
+/// the searched vertices; the others are left at zero. The edges of searched vertex v are
+/// incident[start[v] .. start[v + 1]), in edge order.
 struct Normals {
   std::vector<double> edge, vertex;
+  std::vector<std::int32_t> start, incident;
 };
 
 /// The outward normal of a vertex is the mean of its boundary edges' normals. A vertex may
@@ -82,8 +102,8 @@ Normals outward_normals(const BlockBoundary& boundary, std::span<const double> p
                         std::span<const std::uint8_t> searched) {
   const std::size_t num_edges = boundary.edge_block.size();
   const std::size_t num_vertices = boundary.vertices.size();
-  Normals normals{std::vector<double>(2 * num_edges, 0.0),
-                  std::vector<double>(2 * num_vertices, 0.0)};
+  Normals normals{
+      std::vector<double>(2 * num_edges, 0.0), std::vector<double>(2 * num_vertices, 0.0), {}, {}};
   std::vector<std::int32_t> start(num_vertices + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_edges, 2048), [&](auto range) {
     for (std::size_t i = range.begin(); i != range.end(); ++i) {
@@ -119,7 +139,24 @@ Normals outward_normals(const BlockBoundary& boundary, std::span<const double> p
       }
     }
   });
+  normals.start = std::move(start);
+  normals.incident = std::move(incident);
   return normals;
+}
+
+/// Whether one of vertex v's own boundary edges leaves v along `direction` (unit): the
+/// vertex's face lies on the other block's face that leaves the shared corner that way.
+bool has_face_along(std::size_t v, const double direction[2], const Normals& normals,
+                    std::span<const std::int32_t> edge_vertex) {
+  for (std::int32_t k = normals.start[v]; k < normals.start[v + 1]; ++k) {
+    const auto e = static_cast<std::size_t>(normals.incident[k]);
+    // The edge's tangent is the normal turned back by 90 degrees; it leaves v forwards when
+    // v is the edge's first end.
+    const double sign = edge_vertex[2 * e] == static_cast<std::int32_t>(v) ? 1.0 : -1.0;
+    const double tx = -normals.edge[2 * e + 1] * sign, ty = normals.edge[2 * e] * sign;
+    if (tx * direction[0] + ty * direction[1] > kOverlappingFaces) return true;
+  }
+  return false;
 }
 
 }  // namespace
@@ -247,9 +284,27 @@ std::vector<ContactCandidate> detect_contacts(const BlockBoundary& boundary,
         const double p[2] = {tree_xy[2 * t], tree_xy[2 * t + 1]};
         if (std::abs((p[0] - a[0]) * e[1] - (p[1] - a[1]) * e[0]) > off_line_limit) continue;
         const kernels::VertexEdge c = kernels::vertex_edge(p, a, b);
-        if (c.distance <= reach)
-          local.push_back({static_cast<std::int32_t>(index), static_cast<std::int32_t>(i),
-                           edge_block, c.gap, c.xi > 0.0 && c.xi < 1.0});
+        if (c.distance > reach) continue;
+        Meeting meeting = Meeting::inside;
+        const double corner = kCornerFraction * c.length;
+        if (c.xi * c.length <= corner || (1.0 - c.xi) * c.length <= corner) {
+          meeting = Meeting::near_corner;
+          // A vertex on a corner (a copy of a split node) touches the corner's edge only if
+          // one of its own faces lies on it. Otherwise every copy of a node where several
+          // fractured elements meet would press on the faces of all the others, with a
+          // normal that round-off picks, and a thin element's far edge would see it as
+          // deeply inside.
+          const double to_corner = c.xi < 0.5 ? std::hypot(p[0] - a[0], p[1] - a[1])
+                                              : std::hypot(p[0] - b[0], p[1] - b[1]);
+          if (to_corner <= corner) {
+            const double sign = c.xi < 0.5 ? 1.0 : -1.0;  // the edge leaves the corner
+            const double direction[2] = {sign * c.tangent[0], sign * c.tangent[1]};
+            meeting = has_face_along(index, direction, normals, edge_vertex) ? Meeting::shared_face
+                                                                             : Meeting::on_corner;
+          }
+        }
+        local.push_back({static_cast<std::int32_t>(index), static_cast<std::int32_t>(i), edge_block,
+                         c.gap, meeting});
       }
     }
   });
@@ -277,14 +332,16 @@ std::vector<ContactCandidate> detect_contacts(const BlockBoundary& boundary,
     });
   }
 
-  // Keep, for each vertex and each other block, the edge it projects inside of, if any: on a
-  // flat face the neighbouring edges' extensions give the same gap, and pairing the vertex
-  // with one of them would make it a vertex-vertex contact a whole edge away. Among those
-  // (or among the rest, at a corner), the largest gap wins (ties: lower edge index): near a
-  // convex corner the vertex penetrates only if it is behind both faces, and then the face
-  // it is least behind is the one it came through. Both sorts are total orders (a vertex
-  // meets an edge once), so the list does not depend on the threads. The kept pairs move to
-  // the front of their group.
+  // Keep, for each vertex and each other block: the edges its own faces lie on when it sits
+  // on their corner (both sides of a crack, where a split node's copies meet), and nothing
+  // else of that block; otherwise the edge it projects inside of, if any: on a flat face the
+  // neighbouring edges' extensions give the same gap, and pairing the vertex with one of
+  // them would make it a vertex-vertex contact a whole edge away. Among those (or among the
+  // rest, at a corner), the largest gap wins (ties: lower edge index): near a convex corner
+  // the vertex penetrates only if it is behind both faces, and then the face it is least
+  // behind is the one it came through. Both sorts are total orders (a vertex meets an edge
+  // once), so the list does not depend on the threads. The kept pairs move to the front of
+  // their group.
   std::vector<std::int32_t> kept_start(num_vertices + 1, 0);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, num_vertices, 1024), [&](auto range) {
     for (std::size_t v = range.begin(); v != range.end(); ++v) {
@@ -292,13 +349,20 @@ std::vector<ContactCandidate> detect_contacts(const BlockBoundary& boundary,
       Found* const last = grouped.get() + group_start[v + 1];
       std::sort(first, last, [](const Found& x, const Found& y) {
         if (x.edge_block != y.edge_block) return x.edge_block < y.edge_block;
-        if (x.interior != y.interior) return x.interior;
+        if (x.meeting != y.meeting) return x.meeting < y.meeting;
         if (x.gap != y.gap) return x.gap > y.gap;
         return x.edge < y.edge;
       });
       Found* kept = first;
-      for (Found* x = first; x != last; ++x)
-        if (x == first || x->edge_block != (kept - 1)->edge_block) *kept++ = *x;
+      std::int32_t block = -1;  // the block of the last group
+      for (Found* x = first; x != last; ++x) {
+        const bool another_shared_face = x->edge_block == block &&
+                                         x->meeting == Meeting::shared_face &&
+                                         (kept - 1)->meeting == Meeting::shared_face;
+        if (x->edge_block == block && !another_shared_face) continue;
+        block = x->edge_block;
+        if (x->meeting != Meeting::on_corner) *kept++ = *x;
+      }
       std::sort(first, kept, [](const Found& x, const Found& y) { return x.edge < y.edge; });
       kept_start[v + 1] = static_cast<std::int32_t>(kept - first);
     }

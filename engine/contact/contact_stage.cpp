@@ -202,6 +202,8 @@ void ContactStage::carry_contacts_from(const ContactStage& old) {
     return x.vertex != y.vertex ? x.vertex < y.vertex : x.edge < y.edge;
   });
   contacts_ = committed_;
+  shear_swings_settled_ = old.shear_swings_settled_;
+  normal_swings_settled_ = old.normal_swings_settled_;
 }
 
 bool ContactStage::detect(std::span<const double> positions) {
@@ -307,7 +309,7 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
 }
 
 int ContactStage::update_states(std::span<const double> positions, double tolerance_scale,
-                                double& largest_penetration) {
+                                bool settle, double& largest_penetration) {
   const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
   largest_penetration = 0.0;
   double largest_gap = 0.0;  // the largest normal force, over kn: penetration or bond tension
@@ -339,10 +341,16 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
     // two states, and either is within tolerance of it. A bonded one holds up to its
     // tensile strength.
     const double tension_capacity = c.bonded ? c.tensile_strength * c.area : 0.0;
-    const bool closed = was_closed ? gap <= band || (c.flips >= 2 && gap <= 10.0 * band) ||
-                                         kn * gap <= tension_capacity
-                                   : gap < -band;
-    if (closed != was_closed) {
+    bool closed = was_closed ? gap <= band || (c.flips >= 2 && gap <= 10.0 * band) ||
+                                   kn * gap <= tension_capacity
+                             : gap < -band;
+    // Settling, a contact that has gone back and forth and would flip again is left open:
+    // open adds no force; the overlap it allows is what one iteration moved it, and the next
+    // step starts it again from the geometry.
+    if (settle && c.flips >= 2 && closed != was_closed) {
+      if (was_closed) ++normal_swings_settled_;
+      closed = false;
+    } else if (closed != was_closed) {
       ++c.flips;
       ++changes;
     }
@@ -363,7 +371,14 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
     // anchor either fits within the capacity (locked) or the anchor follows the contact so
     // that the spring carries exactly the capacity (sliding, with no shear stiffness and the
     // friction as a load in the next solve).
-    const double normal_force = std::max(-kn * gap, 0.0);  // a contact in tension holds none
+    // A contact in tension holds none. Once its shear has gone back and forth, friction uses
+    // the mean of this normal force and the one it used last: near a crack the normal forces
+    // of neighbouring contacts move each other's friction capacity, and a capacity that
+    // follows them every iteration can swing between two answers forever. The mean damps
+    // that swing; when the iteration settles the two agree, so the friction is Coulomb's.
+    double normal_force = std::max(-kn * gap, 0.0);
+    if (c.shear_swings >= 2) normal_force = 0.5 * (normal_force + c.used_normal_force);
+    c.used_normal_force = normal_force;
     double capacity = c.friction * normal_force + (c.bonded ? c.cohesion * c.area : 0.0);
     const double elastic = c.shear_spring + slip;
     if (c.bonded && ks * std::abs(elastic) > capacity + tolerance) {
@@ -390,7 +405,16 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       c.friction_force = -c.slip_sign * capacity;
       implied = -c.friction_force;
     }
-    if (was_closed && std::abs(implied - assumed) > tolerance) ++changes;
+    if (was_closed && std::abs(implied - assumed) > tolerance) {
+      // Settling, a contact whose shear has already swung keeps the state this solve implies
+      // without holding the iteration back.
+      if (settle && c.shear_swings >= 2) {
+        ++shear_swings_settled_;
+      } else {
+        ++changes;
+        if (c.shear_swings < 255) ++c.shear_swings;
+      }
+    }
   }
   return changes;
 }

@@ -34,6 +34,8 @@ struct Contact {
   double area = 0.0;       // joint area the contact stands for (m^2), for cohesion and tension
   bool bonded = false;     // an intact joint: cohesion and tensile strength count until it fails
   std::uint8_t flips = 0;  // open <-> closed changes in this step attempt
+  std::uint8_t shear_swings = 0;   // changes of the shear force beyond tolerance, this attempt
+  double used_normal_force = 0.0;  // the normal force friction used in the last update
   // The step's linearisation about its start (what the solve sees): gap(x) = gap_offset + g.x
   // and slip(x) = slip_offset + t.x over the dofs (p, a, b); see kernels/contact_geometry.
   double g[6] = {}, t[6] = {};
@@ -72,8 +74,10 @@ class ContactStage {
   /// used: the exact gap at the end of a step differs from it by O(du^2 / L), which near zero
   /// force is enough to flip a contact back and forth forever.
   /// `tolerance_scale` widens the force tolerance (1 = force_tolerance of the largest contact
-  /// force) for iterations that chatter.
-  int update_states(std::span<const double> positions, double tolerance_scale,
+  /// force) for iterations that chatter. With `settle`, contacts that have already swung
+  /// between two answers in this attempt take their last answer without counting as a change
+  /// (a shear swing keeps the state the solve implies; an open-close swing is left open).
+  int update_states(std::span<const double> positions, double tolerance_scale, bool settle,
                     double& largest_penetration);
   /// Commits a converged step ending at `positions`: the elastic slip of locked contacts
   /// accumulates, other contacts forget theirs.
@@ -91,6 +95,11 @@ class ContactStage {
   /// before, where their vertex and edge still exist (node ids survive a split).
   void carry_contacts_from(const ContactStage& old);
 
+  /// Contacts whose shear force kept swinging and settled on their last answer (cumulative).
+  long shear_swings_settled() const { return shear_swings_settled_; }
+  /// Contacts that kept opening and closing and were left open (cumulative).
+  long normal_swings_settled() const { return normal_swings_settled_; }
+
   const ContactParameters& parameters() const { return parameters_; }
   std::size_t size() const { return contacts_.size(); }
 
@@ -102,6 +111,7 @@ class ContactStage {
   std::vector<Contact> committed_;  // at the end of the last committed step
   std::vector<double> joint_friction_, joint_cohesion_, joint_tensile_;  // per body pair
   std::vector<double> vertex_area_;  // per boundary vertex, see Contact::area
+  long shear_swings_settled_ = 0, normal_swings_settled_ = 0;
   bool started_ = false;  // a step has been committed: contacts that form now are not bonded
 };
 
