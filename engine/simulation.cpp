@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/internal_force.hpp"
@@ -72,7 +73,10 @@ Simulation::Simulation(Scene scene, Model model)
 
   coloring_ = color_elements(model_.conn, model_.num_nodes());
   if (!scene_.joints.empty()) contact_ = std::make_unique<ContactStage>(scene_, model_);
-  if (!model_.tensile_strength.empty()) damage_ = std::make_unique<DamageStage>(scene_, model_);
+  if (!model_.tensile_strength.empty()) {
+    damage_ = std::make_unique<DamageStage>(scene_, model_);
+    committed_damage_ = model_.damage;
+  }
   rebuild_layout();
 
   const std::size_t num_dofs = model_.X.size();
@@ -181,6 +185,13 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
                               StepControl& control) {
   const InertiaTerms inertia = inertia_terms(scene_.analysis, scene_.time.integrator, dt);
   const std::size_t num_dofs = model_.X.size();
+  if (damage_) {
+    attempt_first_damage_.reset();
+    if (retries > 0 && model_.damage != committed_damage_) {
+      model_.damage = committed_damage_;
+      factorized_mass_coefficient_ = -1.0;  // the moduli changed back
+    }
+  }
   if (contact_) {
     bool changed = false;
     {
@@ -245,6 +256,29 @@ DamageChange Simulation::evaluate_damage() {
                          corotational_);
   const DamageChange change = damage_->evaluate(model_);
   if (change.grown > 0) factorized_mass_coefficient_ = -1.0;  // the moduli changed
+  if (change.newly_damaged > 0 && !first_damage_ && !attempt_first_damage_) {
+    FirstDamage first{steps_ + 1, attempt_time_, 0, 0.0, 0.0, 0.0};
+    for (std::int32_t e = 0; e < model_.num_elements(); ++e) {
+      if (model_.damage[e] <= 0.0) continue;
+      ++first.elements;
+      for (int k = 0; k < 3; ++k) {
+        first.x += model_.X[2 * model_.conn[3 * e + k]] / 3.0;
+        first.y += model_.X[2 * model_.conn[3 * e + k] + 1] / 3.0;
+      }
+    }
+    first.x /= first.elements;
+    first.y /= first.elements;
+    for (std::int32_t e = 0; e < model_.num_elements(); ++e) {
+      if (model_.damage[e] <= 0.0) continue;
+      double cx = 0.0, cy = 0.0;
+      for (int k = 0; k < 3; ++k) {
+        cx += model_.X[2 * model_.conn[3 * e + k]] / 3.0;
+        cy += model_.X[2 * model_.conn[3 * e + k] + 1] / 3.0;
+      }
+      first.spread = std::max(first.spread, std::hypot(cx - first.x, cy - first.y));
+    }
+    attempt_first_damage_ = first;
+  }
   return change;
 }
 
@@ -358,6 +392,19 @@ void Simulation::detach_fractured_elements() {
                       &u_trial_, &du_, &f_contact_, &positions_, &damage_force_})
     follow_split_nodes(detachment.node_origin, *field);
   bc_ = build_boundary_conditions(scene_, model_);
+  // Without inertia a piece that fracture cut loose is held by nothing (lone elements are
+  // anchored below): the specimen has failed, and a static analysis cannot follow it.
+  if (scene_.analysis == Analysis::static_)
+    if (const std::optional<FreeBlock> free = find_free_block(model_, bc_, 2)) {
+      char buf[320];
+      std::snprintf(buf, sizeof buf,
+                    "step %ld: fracture cut loose block %d (%d elements of body '%s'), which "
+                    "nothing holds in %s in a static analysis: the specimen has failed; use "
+                    "analysis = \"quasi-static\" or \"dynamic\" to follow it further",
+                    steps_ + 1, free->block, free->elements, free->body.c_str(),
+                    free->motion.c_str());
+      throw RunFailure(buf);
+    }
   reference_loads_ = build_reference_loads(scene_, model_);
   rhs_.assign(static_cast<std::size_t>(bc_.num_equations), 0.0);
   auto probes = std::make_unique<Probes>(scene_, model_);
@@ -448,30 +495,48 @@ RunResult Simulation::run(const RunOptions& options) {
 
   RunResult result;
   double t = 0.0;
+  bool frame_written = false;  // the failing step's frame is already out
   const long planned = std::lround(end_time / scene_.time.dt);
   try {
     while (t < end_time * (1.0 - 1e-12)) {
       const long step = steps_ + 1;
       double dt = std::min(control.dt(), end_time - t);
+      attempt_time_ = t + dt;
       for (int retries = 0; !attempt_step(step, retries, dt,
                                           load_factor(scene_.analysis, t + dt, end_time), control);
            ++retries) {
         ++redone_steps_;
         dt = std::min(control.dt(), end_time - t);
+        attempt_time_ = t + dt;
       }
       commit_step(dt);
-      if (damage_) detach_fractured_elements();
+      if (damage_) {
+        committed_damage_ = model_.damage;
+        if (!first_damage_) first_damage_ = attempt_first_damage_;
+      }
+      // A detachment that ends the run (a static specimen that failed) still leaves the
+      // committed step in history.csv and its frame.
+      std::optional<RunFailure> fracture_failure;
+      try {
+        if (damage_) detach_fractured_elements();
+      } catch (const RunFailure& failure) {
+        fracture_failure = failure;
+      }
       t += dt;
       steps_ = step;
       control.accept(true);
       const bool last = t >= end_time * (1.0 - 1e-12);
-      record(step, t, dt, last);
+      record(step, t, dt, last || fracture_failure);
+      if (fracture_failure) {
+        frame_written = true;
+        throw *fracture_failure;
+      }
       if (options.on_step) options.on_step({step, t, dt, end_time, planned}, model_);
     }
   } catch (const RunFailure& failure) {
     result.ok = false;
     result.reason = failure.what();
-    if (outputs) {
+    if (outputs && !frame_written) {
       ScopedTimer timer(timers_.output);
       outputs->frame(model_, steps_, t);  // the last committed state, for diagnosis
     }
@@ -520,6 +585,15 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
         onset["material[" + std::to_string(i) + "]"] =
             scene_.materials[i].tension_onset == TensionOnset::strain ? "strain" : "stress";
     s["tension_onset"] = onset;
+    if (first_damage_)
+      s["first_damage"] = {{"step", first_damage_->step},
+                           {"time", first_damage_->time},
+                           {"elements", first_damage_->elements},
+                           {"x", first_damage_->x},
+                           {"y", first_damage_->y},
+                           {"spread", first_damage_->spread}};
+    else
+      s["first_damage"] = nullptr;
   }
   s["damaged_elements"] =
       std::count_if(model_.damage.begin(), model_.damage.end(), [](double w) { return w > 0; });

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -116,7 +117,19 @@ class Simulation {
   LowRankTerms springs_added_, springs_removed_;  // contact springs switched in an iteration
   std::vector<double> damage_force_;  // f_int at the step's result, for the damage check
   long damage_iterations_ = 0, damage_limit_hits_ = 0, detached_elements_ = 0;
-  std::vector<std::uint8_t> detached_;   // per element
+  std::vector<std::uint8_t> detached_;    // per element
+  std::vector<double> committed_damage_;  // w at the last committed step: a redone attempt
+                                          // starts from it, not from its failed attempt's
+  /// Where damage first appeared: the elements of the first damage pass that found any.
+  struct FirstDamage {
+    long step = 0;
+    double time = 0.0;
+    std::int32_t elements = 0;
+    double x = 0.0, y = 0.0;  // mean reference centroid of those elements
+    double spread = 0.0;      // largest distance of their centroids from that mean
+  };
+  std::optional<FirstDamage> first_damage_, attempt_first_damage_;
+  double attempt_time_ = 0.0;            // time at the end of the step being attempted
   std::vector<double> fragment_anchor_;  // per node: spring to the step's start (N/m), or 0
 
   // Step state (2 per node unless noted).

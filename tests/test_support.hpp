@@ -67,6 +67,24 @@ inline SceneRun run_scene_text(const std::string& text,
   return run;
 }
 
+inline std::filesystem::path data_file(const std::string& name);
+
+/// Runs a scene of data/ with `overrides` in a temporary folder; `frames` keeps the frames.
+inline SceneRun run_data_scene(const std::string& name,
+                               const std::vector<std::string>& overrides = {}, int threads = 0) {
+  TempDir dir;
+  Scene scene = read_scene(data_file(name), overrides);
+  check_supported_features(scene);
+  Simulation sim(scene, build_scene_model(scene));
+  RunOptions options;
+  options.out_root = dir.path() / "out";
+  options.threads = threads;
+  SceneRun run{{}, sim.run(options), {}};
+  run.model = sim.model();
+  run.history = read_csv(dir.path() / "out" / scene.name / "history.csv");
+  return run;
+}
+
 /// Gmsh lines for an axis-aligned rectangle [x0, x1] x [y0, y1] of element size `size`, as
 /// surface `id` (points, lines and loop numbered id + 1 .. id + 4): bottom is line id + 1,
 /// right id + 2, top id + 3, left id + 4.

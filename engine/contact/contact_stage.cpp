@@ -146,6 +146,9 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   if (!lengths.empty()) {
     std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
     parameters_.reach = 0.5 * lengths[lengths.size() / 2];
+    // A quarter of the median edge: far beyond any penalty overlap of a sound solve
+    // (force / kn), so deeper only when the iteration runs away.
+    parameters_.penetration_limit = 0.5 * parameters_.reach;
   }
 }
 
@@ -261,6 +264,9 @@ bool ContactStage::detect(std::span<const double> positions) {
                                                : ContactState::sliding;
     }
     linearise(c, positions);
+    c.start_normal_force = c.state != ContactState::open
+                               ? std::max(-parameters_.normal_stiffness * c.gap_start, 0.0)
+                               : -1.0;
     next.push_back(c);
   }
   contacts_ = std::move(next);
@@ -319,6 +325,9 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       largest_penetration = std::max(largest_penetration, -gap);
       largest_gap = std::max(largest_gap, std::abs(gap));
     }
+  // An iteration that ran away settles nothing: it must come back within the limit.
+  const bool runaway = largest_penetration > parameters_.penetration_limit;
+  if (runaway) settle = false;
   // The iteration has settled when the forces the solve assumed match the states its result
   // implies, to a small fraction of the largest contact force. Contacts that carry next to
   // nothing would otherwise flip back and forth forever: a contact changes between open and
@@ -367,18 +376,23 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       const double touched = c.gap_start > 0.0 ? c.gap_start / (c.gap_start - gap) : 0.0;
       c.shear_spring = -std::clamp(touched, 0.0, 1.0) * slip;
     }
+    // A contact in tension holds none. Friction acts as a load from the last solve's normal
+    // force, an explicit coupling that need not converge: near a crack the normal forces of
+    // neighbouring contacts move each other's friction, and a wedged fragment's friction
+    // presses it in harder, which raises the friction again. Once a contact's shear has gone
+    // back and forth, friction takes the normal force it had at the start of the step, if
+    // it was closed then (lagged by a step, like the load), or else the mean of this normal
+    // force and the one it used last, which damps the swing; when the iteration settles the
+    // two agree.
+    double normal_force = std::max(-kn * gap, 0.0);
+    if (c.shear_swings >= 2)
+      normal_force = c.start_normal_force >= 0.0 ? c.start_normal_force
+                                                 : 0.5 * (normal_force + c.used_normal_force);
+    c.used_normal_force = normal_force;
     // Coulomb's law as the return mapping of a rigid-plastic spring: the shear past the
     // anchor either fits within the capacity (locked) or the anchor follows the contact so
     // that the spring carries exactly the capacity (sliding, with no shear stiffness and the
     // friction as a load in the next solve).
-    // A contact in tension holds none. Once its shear has gone back and forth, friction uses
-    // the mean of this normal force and the one it used last: near a crack the normal forces
-    // of neighbouring contacts move each other's friction capacity, and a capacity that
-    // follows them every iteration can swing between two answers forever. The mean damps
-    // that swing; when the iteration settles the two agree, so the friction is Coulomb's.
-    double normal_force = std::max(-kn * gap, 0.0);
-    if (c.shear_swings >= 2) normal_force = 0.5 * (normal_force + c.used_normal_force);
-    c.used_normal_force = normal_force;
     double capacity = c.friction * normal_force + (c.bonded ? c.cohesion * c.area : 0.0);
     const double elastic = c.shear_spring + slip;
     if (c.bonded && ks * std::abs(elastic) > capacity + tolerance) {
@@ -416,7 +430,7 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       }
     }
   }
-  return changes;
+  return runaway ? std::max(changes, 1) : changes;
 }
 
 void ContactStage::commit(std::span<const double> positions) {

@@ -34,8 +34,9 @@ struct Contact {
   double area = 0.0;       // joint area the contact stands for (m^2), for cohesion and tension
   bool bonded = false;     // an intact joint: cohesion and tensile strength count until it fails
   std::uint8_t flips = 0;  // open <-> closed changes in this step attempt
-  std::uint8_t shear_swings = 0;   // changes of the shear force beyond tolerance, this attempt
-  double used_normal_force = 0.0;  // the normal force friction used in the last update
+  std::uint8_t shear_swings = 0;     // changes of the shear force beyond tolerance, this attempt
+  double used_normal_force = 0.0;    // the normal force friction used in the last update
+  double start_normal_force = -1.0;  // at the start of the step, if closed then (else < 0)
   // The step's linearisation about its start (what the solve sees): gap(x) = gap_offset + g.x
   // and slip(x) = slip_offset + t.x over the dofs (p, a, b); see kernels/contact_geometry.
   double g[6] = {}, t[6] = {};
@@ -45,10 +46,11 @@ struct Contact {
 
 /// Joint parameters that contacts use, derived from the scene.
 struct ContactParameters {
-  double normal_stiffness = 0.0;  // kn, N/m
-  double shear_stiffness = 0.0;   // ks, N/m
-  double reach = 0.0;             // search distance for candidates, m
-  double force_tolerance = 1e-2;  // settled: forces within this fraction of the largest
+  double normal_stiffness = 0.0;   // kn, N/m
+  double shear_stiffness = 0.0;    // ks, N/m
+  double reach = 0.0;              // search distance for candidates, m
+  double force_tolerance = 1e-2;   // settled: forces within this fraction of the largest
+  double penetration_limit = 0.0;  // settled only with no contact deeper than this, m
   double thickness = 1.0;
 };
 
@@ -69,7 +71,8 @@ class ContactStage {
   void add_springs(std::span<const double> positions, const StiffnessLayout& layout,
                    std::int32_t first_slot, std::span<double> values,
                    std::span<double> force) const;
-  /// Updates the states from the solved `positions`; returns how many changed, and the
+  /// Updates the states from the solved `positions`; returns how many changed (at least 1
+  /// while a contact is deeper than penetration_limit: a runaway never settles), and the
   /// largest penetration. Gaps and slips are the step's linearised ones, the same the solve
   /// used: the exact gap at the end of a step differs from it by O(du^2 / L), which near zero
   /// force is enough to flip a contact back and forth forever.

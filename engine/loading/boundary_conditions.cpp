@@ -34,7 +34,8 @@ BoundaryConditions build_boundary_conditions(const Scene& scene, const Model& mo
   return bc;
 }
 
-void check_static_restraint(const Scene& scene, const Model& model, const BoundaryConditions& bc) {
+std::optional<FreeBlock> find_free_block(const Model& model, const BoundaryConditions& bc,
+                                         std::int32_t min_elements) {
   // For each block, G = sum over prescribed dofs of r r^T with r the dof's value in the three
   // rigid modes (x translation, y translation, rotation about the block centroid). The block
   // is held exactly when G is regular.
@@ -66,24 +67,35 @@ void check_static_restraint(const Scene& scene, const Model& model, const Bounda
       g[b] += r * r.transpose();
     }
   }
+  std::vector<std::int32_t> elements(num_blocks, 0);
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) ++elements[model.element_block[e]];
   for (std::size_t b = 0; b < num_blocks; ++b) {
+    if (elements[b] < min_elements) continue;
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(g[b]);
     if (eig.eigenvalues()(0) > 1e-10) continue;
     const Eigen::Vector3d mode = eig.eigenvectors().col(0);
-    std::string free_motion = std::abs(mode(2)) > 0.5                  ? "rotation"
-                              : std::abs(mode(0)) >= std::abs(mode(1)) ? "x translation"
-                                                                       : "y translation";
-    std::string body;
+    FreeBlock free{static_cast<std::int32_t>(b), elements[b], "",
+                   std::abs(mode(2)) > 0.5                  ? "rotation"
+                   : std::abs(mode(0)) >= std::abs(mode(1)) ? "x translation"
+                                                            : "y translation"};
     for (std::int32_t e = 0; e < model.num_elements(); ++e)
-      if (model.element_block[e] == static_cast<std::int32_t>(b)) {
-        body = model.sets.bodies[model.element_body[e]];
+      if (model.element_block[e] == free.block) {
+        free.body = model.sets.bodies[model.element_body[e]];
         break;
       }
-    throw InputError(scene.file.string(), "boundary",
-                     "static analysis needs every block restrained, but block " +
-                         std::to_string(b) + " (body '" + body + "') is free in " + free_motion +
-                         ": add [[boundary]] constraints or use analysis = \"quasi-static\"");
+    return free;
   }
+  return std::nullopt;
+}
+
+void check_static_restraint(const Scene& scene, const Model& model, const BoundaryConditions& bc) {
+  const std::optional<FreeBlock> free = find_free_block(model, bc);
+  if (!free) return;
+  throw InputError(scene.file.string(), "boundary",
+                   "static analysis needs every block restrained, but block " +
+                       std::to_string(free->block) + " (body '" + free->body + "') is free in " +
+                       free->motion +
+                       ": add [[boundary]] constraints or use analysis = \"quasi-static\"");
 }
 
 }  // namespace rockdd

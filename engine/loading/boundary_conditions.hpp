@@ -2,6 +2,8 @@
 // Prescribed dofs (fixed or moving at an imposed velocity) and the equation numbering of
 // the free dofs that the stiffness is assembled over.
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "engine/model/model.hpp"
@@ -20,6 +22,19 @@ struct BoundaryConditions {
 /// Applies the scene's [[boundary]] entries in order (a later entry overrides an earlier one
 /// on shared dofs) and numbers the free dofs in dof order.
 BoundaryConditions build_boundary_conditions(const Scene& scene, const Model& model);
+
+/// A block that the constraints leave free to move rigidly, and how.
+struct FreeBlock {
+  std::int32_t block = -1;
+  std::int32_t elements = 0;
+  std::string body;    // body of the block's first element
+  std::string motion;  // "x translation", "y translation" or "rotation"
+};
+
+/// The first block of more than `min_elements - 1` elements that the prescribed dofs do not
+/// hold against all three rigid-body modes, if any.
+std::optional<FreeBlock> find_free_block(const Model& model, const BoundaryConditions& bc,
+                                         std::int32_t min_elements = 1);
 
 /// A static analysis needs every block held against its three rigid-body modes; throws
 /// InputError naming the first block that is not (and its body).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include "engine/number_format.hpp"
 #include "engine/output/vtu_writer.hpp"
@@ -13,6 +14,18 @@ namespace rockdd {
 RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& root,
                        const std::vector<std::string>& probe_columns, bool line_probes)
     : dir_(root / scene.name), fields_(scene.output.fields), columns_(probe_columns) {
+  // Frames and profiles of an earlier run in the same folder would mix with this run's (a
+  // longer earlier run leaves frames past this one's end): they are removed first.
+  for (const char* folder : {"frames", "profiles"}) {
+    std::error_code ignored;
+    if (std::filesystem::is_directory(dir_ / folder, ignored))
+      for (const auto& entry : std::filesystem::directory_iterator(dir_ / folder, ignored)) {
+        const std::string name = entry.path().filename().string();
+        const bool ours = (name.starts_with("frame_") && name.ends_with(".vtu")) ||
+                          (std::string(folder) == "profiles" && name.ends_with(".csv"));
+        if (ours) std::filesystem::remove(entry.path(), ignored);
+      }
+  }
   std::filesystem::create_directories(dir_ / "frames");
   if (line_probes) std::filesystem::create_directories(dir_ / "profiles");
   history_ = std::make_unique<AtomicFile>(dir_ / "history.csv");

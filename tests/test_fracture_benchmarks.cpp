@@ -1,0 +1,98 @@
+// The paper's fracture benchmarks (METHOD.md "The paper's benchmarks"): the flattened
+// Brazilian disk to failure (paper section 3.3, Fig. 11), on a coarser mesh than data/'s
+// (element size 1.25 mm: about 3,100 elements instead of 18,000).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "test_support.hpp"
+
+namespace rockdd {
+namespace {
+
+constexpr double kRadius = 0.025, kFlatHalfAngle = 10.0 * std::numbers::pi / 180.0;
+
+/// Load P (N, per unit thickness) of a pressure p on each flat: P = p 2 R sin(alpha).
+double flat_load(double pressure) {
+  return pressure * 2.0 * kRadius * std::sin(kFlatHalfAngle);
+}
+
+TEST(BrazilianDisk, FirstFailureAtTheCentreNearTheTensileStrength) {
+  // Load control, pressure growing in 120 steps to P = 2.4 MPa pi t R. The elastic stress at
+  // the centre of a flattened disc is sigma_x = 0.94 P / (pi t R) (Huang et al. 2015, paper
+  // eq. 15 at y = 0), so with ft = 2 MPa (stress onset) the centre fails first at
+  // P / (pi t R) = 2.1 MPa; the paper's figure is 2.128 MPa. Required: within 10 % of ft and
+  // at the centre: the first damaged elements' mean within 0.15 R of it (sigma_x is within
+  // 0.6 % of its centre value there, so mesh noise picks the element). Measured: 2.080 MPa
+  // at step 104, one element 2.3 mm (0.09 R) from the centre; on data/'s 18,500-element
+  // mesh also 2.080 MPa, 46 elements around a mean 0.08 mm from the centre.
+  const auto run =
+      test::run_data_scene("brazilian_disk_failure.toml", {"mesh.element_size=1.25e-3"});
+  const auto& first = run.result.summary.at("first_damage");
+  ASSERT_TRUE(first.is_object()) << "nothing damaged";
+  const long step = first.at("step").get<long>();
+  const double pressure = 21.7122e6 * static_cast<double>(step) / 120.0;
+  const double strength = flat_load(pressure) / (std::numbers::pi * kRadius);
+  EXPECT_NEAR(strength, 2e6, 0.1 * 2e6);
+  EXPECT_NEAR(strength, 2.128e6, 0.05 * 2.128e6) << "the paper's first-failure strength";
+  EXPECT_LT(std::hypot(first.at("x").get<double>(), first.at("y").get<double>()), 0.15 * kRadius);
+  // The step before, nothing had damaged: the load at first failure is bracketed to 1 %.
+  const auto before =
+      test::run_data_scene("brazilian_disk_failure.toml",
+                           {"mesh.element_size=1.25e-3", "time.steps=" + std::to_string(step - 1),
+                            "load.0.pressure=" + std::to_string(21.7122e6 * (step - 1) / 120.0),
+                            "load.1.pressure=" + std::to_string(21.7122e6 * (step - 1) / 120.0)});
+  ASSERT_TRUE(before.result.ok) << before.result.reason;
+  EXPECT_EQ(before.result.summary.at("damaged_elements").get<long>(), 0);
+  // Past the peak a static analysis cannot follow the load: the run says so.
+  EXPECT_FALSE(run.result.ok);
+  EXPECT_NE(run.result.reason.find("the specimen has failed"), std::string::npos)
+      << run.result.reason;
+}
+
+TEST(BrazilianDisk, CrackRunsAlongTheLoadedDiameterToBothEnds) {
+  // The paper's peak load P = 167.12 kN held (quasi-static steps of 10 us): the first
+  // elements damage at the centre, then the crack runs to both flats (paper Fig. 11). Checked
+  // on the damaged elements' reference centroids: they reach beyond 0.9 R above and below the
+  // centre, 90 % of them lie within 0.3 R of the loaded diameter, and all of those in the
+  // middle half (|y| < R / 2) do (measured: 92 %, 100 %; the band widens under the flats,
+  // crushed once the disk has split).
+  const auto run = test::run_data_scene("brazilian_disk_crack.toml");
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& first = run.result.summary.at("first_damage");
+  ASSERT_TRUE(first.is_object()) << "nothing damaged";
+  EXPECT_LT(std::hypot(first.at("x").get<double>(), first.at("y").get<double>()), 0.1 * kRadius);
+  const Model& model = run.model;
+  int damaged = 0, in_band = 0, middle = 0, middle_in_band = 0;
+  double lowest = 0.0, highest = 0.0;
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+    if (model.damage[e] <= 0.0) continue;
+    double x = 0.0, y = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      x += model.X[2 * model.conn[3 * e + k]] / 3.0;
+      y += model.X[2 * model.conn[3 * e + k] + 1] / 3.0;
+    }
+    ++damaged;
+    const bool band = std::abs(x) < 0.3 * kRadius;
+    in_band += band;
+    if (std::abs(y) < 0.5 * kRadius) {
+      ++middle;
+      middle_in_band += band;
+    }
+    lowest = std::min(lowest, y);
+    highest = std::max(highest, y);
+  }
+  ASSERT_GT(damaged, 0);
+  EXPECT_GT(highest, 0.9 * kRadius);
+  EXPECT_LT(lowest, -0.9 * kRadius);
+  EXPECT_GE(in_band, 0.9 * damaged) << in_band << " of " << damaged;
+  EXPECT_GT(middle, 0);
+  EXPECT_EQ(middle_in_band, middle);
+  // Every damaged element has become a block of its own (detach_at_damage = 0).
+  EXPECT_EQ(run.result.summary.at("detached_elements").get<long>(), damaged);
+}
+
+}  // namespace
+}  // namespace rockdd
