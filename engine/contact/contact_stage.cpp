@@ -264,8 +264,8 @@ bool ContactStage::detect(std::span<const double> positions) {
                                                : ContactState::sliding;
     }
     linearise(c, positions);
-    c.start_normal_force = c.state != ContactState::open
-                               ? std::max(-parameters_.normal_stiffness * c.gap_start, 0.0)
+    c.start_normal_force = c.state != ContactState::open && c.gap_start < 0.0
+                               ? -parameters_.normal_stiffness * c.gap_start
                                : -1.0;
     next.push_back(c);
   }
@@ -381,7 +381,7 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
     // neighbouring contacts move each other's friction, and a wedged fragment's friction
     // presses it in harder, which raises the friction again. Once a contact's shear has gone
     // back and forth, friction takes the normal force it had at the start of the step, if
-    // it was closed then (lagged by a step, like the load), or else the mean of this normal
+    // it was pressed then (lagged by a step, like the load), or else the mean of this normal
     // force and the one it used last, which damps the swing; when the iteration settles the
     // two agree.
     double normal_force = std::max(-kn * gap, 0.0);

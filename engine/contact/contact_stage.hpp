@@ -36,7 +36,7 @@ struct Contact {
   std::uint8_t flips = 0;  // open <-> closed changes in this step attempt
   std::uint8_t shear_swings = 0;     // changes of the shear force beyond tolerance, this attempt
   double used_normal_force = 0.0;    // the normal force friction used in the last update
-  double start_normal_force = -1.0;  // at the start of the step, if closed then (else < 0)
+  double start_normal_force = -1.0;  // at the start of the step, if pressed then (else < 0)
   // The step's linearisation about its start (what the solve sees): gap(x) = gap_offset + g.x
   // and slip(x) = slip_offset + t.x over the dofs (p, a, b); see kernels/contact_geometry.
   double g[6] = {}, t[6] = {};

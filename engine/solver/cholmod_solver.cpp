@@ -66,10 +66,10 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-/// Before any update has been timed on a pattern, update_expected_faster() assumes that one
-/// refactorization costs as much as kBreakEvenPerRootN * sqrt(n) update columns and
-/// kConversionPerFactor refactorizations per conversion to simplicial form (bench_open_close,
-/// 2D CST meshes and a pile of blocks, 1e4 to 1e6 dofs; see docs/benchmarks.md).
+/// update_expected_faster() takes one refactorization to cost as much as
+/// kBreakEvenPerRootN * sqrt(n) update columns, and a conversion to simplicial form
+/// kConversionPerFactor refactorizations (measured by bench_open_close on 2D CST meshes and a
+/// pile of blocks, 1e4 to 1e6 dofs: break-even at 85, 150 and 450 columns; docs/benchmarks.md).
 constexpr double kBreakEvenPerRootN = 0.5;
 constexpr double kConversionPerFactor = 0.15;
 
@@ -95,10 +95,6 @@ struct CholmodSolver::State {
   std::vector<std::pair<std::int32_t, double>> entries;
   std::vector<std::uint32_t> visited;  // per column of L: stamp of the last downdate check
   std::uint32_t stamp = 0;
-  // Measured costs on this pattern, for update_expected_faster().
-  double conversion_seconds = -1.0;  // the last supernodal -> simplicial conversion
-  double update_seconds = 0.0;       // updates without their conversions...
-  std::int64_t timed_columns = 0;    // ...and their columns
 
   State() {
     cholmod_start(&common);
@@ -251,9 +247,6 @@ void CholmodSolver::analyze(const SparsityPattern& pattern) {
   // The analysis leaves the factorization's flop count in Common->fl.
   s.blas_threads = s.common.fl > kParallelBlasFlops ? openblas_get_num_threads() : 1;
   const auto* perm = static_cast<const std::int32_t*>(s.symbolic->Perm);
-  s.conversion_seconds = -1.0;
-  s.update_seconds = 0.0;
-  s.timed_columns = 0;
   s.inverse_perm.resize(static_cast<std::size_t>(pattern.n));
   for (std::int32_t k = 0; k < pattern.n; ++k) s.inverse_perm[perm[k]] = k;
   ++stats_.analyses;
@@ -303,18 +296,14 @@ void CholmodSolver::update(const LowRankTerms& terms, bool add) {
   const auto columns = static_cast<std::int32_t>(s.c_p.size()) - 1;
   if (columns == 0) return;
   SerialOpenMpRegions serial;
-  double conversion = 0.0;
   if (s.factor->is_super) {
     // Simplicial LDL^T, packed, columns in order: the form cholmod_updown modifies in place
     // (it would convert any other form itself, to the same).
-    const auto convert_start = std::chrono::steady_clock::now();
     if (!cholmod_change_factor(CHOLMOD_REAL, false, false, true, true, s.factor, &s.common)) {
       s.factor_ready = false;
       throw RunFailure("CHOLMOD could not convert the factor for an update (status " +
                        std::to_string(s.common.status) + ")");
     }
-    conversion = seconds_since(convert_start);
-    s.conversion_seconds = conversion;
     ++stats_.simplicial_conversions;
   }
   cholmod_sparse c{};
@@ -334,8 +323,6 @@ void CholmodSolver::update(const LowRankTerms& terms, bool add) {
   ++stats_.updates;
   stats_.updated_columns += columns;
   stats_.last_update_seconds = seconds_since(start);
-  s.update_seconds += stats_.last_update_seconds - conversion;
-  s.timed_columns += columns;
   if (!ok || s.common.status < CHOLMOD_OK) {
     s.factor_ready = false;
     throw RunFailure("CHOLMOD update failed (status " + std::to_string(s.common.status) + ")");
@@ -354,15 +341,12 @@ bool CholmodSolver::update_expected_faster(std::int64_t columns) const {
   const State& s = *state_;
   if (!s.factor_ready || stats_.factorizations == 0) return false;
   if (columns <= 0) return true;
-  const double refactor = stats_.last_factor_seconds;
-  const double per_column =
-      s.timed_columns > 0
-          ? s.update_seconds / static_cast<double>(s.timed_columns)
-          : refactor / (kBreakEvenPerRootN * std::sqrt(static_cast<double>(s.pattern.n)));
-  double cost = static_cast<double>(columns) * per_column;
-  if (s.factor->is_super)
-    cost += s.conversion_seconds >= 0.0 ? s.conversion_seconds : kConversionPerFactor * refactor;
-  return cost < refactor;
+  // In units of one refactorization. A model, not timings: the choice changes the result's
+  // round-off, and the results must not depend on how busy the machine was.
+  double cost = static_cast<double>(columns) /
+                (kBreakEvenPerRootN * std::sqrt(static_cast<double>(s.pattern.n)));
+  if (s.factor->is_super) cost += kConversionPerFactor;
+  return cost < 1.0;
 }
 
 void CholmodSolver::solve(const double* b, double* x) {
