@@ -315,7 +315,7 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
     }
     if (changes == 0) break;
     // Factor reuse: the springs that switched are a low-rank change of K. When updating the
-    // factor costs less than refactorizing (measured per pattern, docs/benchmarks.md), the
+    // factor is expected to cost less than refactorizing (docs/benchmarks.md), the
     // next iteration solves with the updated factor; a downdate that fails falls back.
     factor_current = false;
     if (bc_.num_equations > 0) {
