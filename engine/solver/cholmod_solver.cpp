@@ -2,6 +2,7 @@
 
 #include <cholmod.h>
 #include <malloc.h>
+#include <oneapi/tbb/global_control.h>
 
 #include <algorithm>
 #include <chrono>
@@ -256,7 +257,10 @@ void CholmodSolver::factorize(const double* values) {
   State& s = *state_;
   if (s.symbolic == nullptr) throw std::logic_error("CholmodSolver::factorize before analyze");
   SerialOpenMpRegions serial;
-  BlasThreads blas(s.blas_threads);
+  // No more BLAS threads than the run was given (--threads): TBB's limit in force now.
+  const auto allowed = static_cast<int>(
+      tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
+  BlasThreads blas(std::max(1, std::min(s.blas_threads, allowed)));
   s.factor_ready = false;
   // A supernodal factor is refactorized in place. One that updates turned simplicial cannot
   // go back (CHOLMOD converts only symbolic factors to supernodal): start again from a copy
