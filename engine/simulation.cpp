@@ -258,25 +258,16 @@ DamageChange Simulation::evaluate_damage() {
   if (change.grown > 0) factorized_mass_coefficient_ = -1.0;  // the moduli changed
   if (change.newly_damaged > 0 && !first_damage_ && !attempt_first_damage_) {
     FirstDamage first{steps_ + 1, attempt_time_, 0, 0.0, 0.0, 0.0};
-    for (std::int32_t e = 0; e < model_.num_elements(); ++e) {
-      if (model_.damage[e] <= 0.0) continue;
-      ++first.elements;
-      for (int k = 0; k < 3; ++k) {
-        first.x += model_.X[2 * model_.conn[3 * e + k]] / 3.0;
-        first.y += model_.X[2 * model_.conn[3 * e + k] + 1] / 3.0;
-      }
+    std::vector<std::array<double, 2>> centroids;
+    for (std::int32_t e = 0; e < model_.num_elements(); ++e)
+      if (model_.damage[e] > 0.0) centroids.push_back(reference_centroid(model_, e));
+    first.elements = static_cast<std::int32_t>(centroids.size());
+    for (const auto& c : centroids) {
+      first.x += c[0] / first.elements;
+      first.y += c[1] / first.elements;
     }
-    first.x /= first.elements;
-    first.y /= first.elements;
-    for (std::int32_t e = 0; e < model_.num_elements(); ++e) {
-      if (model_.damage[e] <= 0.0) continue;
-      double cx = 0.0, cy = 0.0;
-      for (int k = 0; k < 3; ++k) {
-        cx += model_.X[2 * model_.conn[3 * e + k]] / 3.0;
-        cy += model_.X[2 * model_.conn[3 * e + k] + 1] / 3.0;
-      }
-      first.spread = std::max(first.spread, std::hypot(cx - first.x, cy - first.y));
-    }
+    for (const auto& c : centroids)
+      first.spread = std::max(first.spread, std::hypot(c[0] - first.x, c[1] - first.y));
     attempt_first_damage_ = first;
   }
   return change;

@@ -69,11 +69,7 @@ TEST(BrazilianDisk, CrackRunsAlongTheLoadedDiameterToBothEnds) {
   double lowest = 0.0, highest = 0.0;
   for (std::int32_t e = 0; e < model.num_elements(); ++e) {
     if (model.damage[e] <= 0.0) continue;
-    double x = 0.0, y = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      x += model.X[2 * model.conn[3 * e + k]] / 3.0;
-      y += model.X[2 * model.conn[3 * e + k] + 1] / 3.0;
-    }
+    const auto [x, y] = reference_centroid(model, e);
     ++damaged;
     const bool band = std::abs(x) < 0.3 * kRadius;
     in_band += band;

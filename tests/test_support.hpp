@@ -50,39 +50,36 @@ struct SceneRun {
 
 inline std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& file);
 
+/// Runs `scene` with its outputs under `dir`/out.
+inline SceneRun run_scene(const Scene& scene, const std::filesystem::path& dir, int threads) {
+  Simulation sim(scene, build_scene_model(scene));
+  RunOptions options;
+  options.out_root = dir / "out";
+  options.threads = threads;
+  SceneRun run{{}, sim.run(options), {}};
+  run.model = sim.model();
+  run.history = read_csv(dir / "out" / scene.name / "history.csv");
+  return run;
+}
+
 /// Runs a scene given as TOML text in a temporary folder (with `files` written beside it).
 inline SceneRun run_scene_text(const std::string& text,
                                const std::vector<std::string>& overrides = {}, int threads = 0,
                                const std::map<std::string, std::string>& files = {}) {
   TempDir dir;
   for (const auto& [name, content] : files) std::ofstream(dir.path() / name) << content;
-  Scene scene = scene_from_text(text, dir.path(), overrides);
-  Simulation sim(scene, build_scene_model(scene));
-  RunOptions options;
-  options.out_root = dir.path() / "out";
-  options.threads = threads;
-  SceneRun run{{}, sim.run(options), {}};
-  run.model = sim.model();
-  run.history = read_csv(dir.path() / "out" / scene.name / "history.csv");
-  return run;
+  return run_scene(scene_from_text(text, dir.path(), overrides), dir.path(), threads);
 }
 
 inline std::filesystem::path data_file(const std::string& name);
 
-/// Runs a scene of data/ with `overrides` in a temporary folder; `frames` keeps the frames.
+/// Runs a scene of data/ with `overrides` in a temporary folder.
 inline SceneRun run_data_scene(const std::string& name,
                                const std::vector<std::string>& overrides = {}, int threads = 0) {
   TempDir dir;
   Scene scene = read_scene(data_file(name), overrides);
   check_supported_features(scene);
-  Simulation sim(scene, build_scene_model(scene));
-  RunOptions options;
-  options.out_root = dir.path() / "out";
-  options.threads = threads;
-  SceneRun run{{}, sim.run(options), {}};
-  run.model = sim.model();
-  run.history = read_csv(dir.path() / "out" / scene.name / "history.csv");
-  return run;
+  return run_scene(scene, dir.path(), threads);
 }
 
 /// Gmsh lines for an axis-aligned rectangle [x0, x1] x [y0, y1] of element size `size`, as

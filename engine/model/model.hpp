@@ -2,6 +2,7 @@
 // Model: the state of a simulation as structure-of-arrays, one contiguous array per field.
 // Vector fields on nodes are interleaved (x, y) with 2 values per node, so a node's dofs
 // are 2i and 2i+1 and a whole field is one array that the solver can read directly.
+#include <array>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -39,8 +40,8 @@ struct Model {
   std::vector<double> young;  // undamaged E0 of each element
   std::vector<double> poisson;
   std::vector<double> density;
-  std::vector<double> area0;     // reference area
-  std::vector<double> damage;    // w in [0, 1]
+  std::vector<double> area0;   // reference area
+  std::vector<double> damage;  // w in [0, 1]
   // Strengths of damageable elements (empty in an elastic scene): ft0, fc0 (Pa), phi (rad).
   std::vector<double> tensile_strength;
   std::vector<double> compressive_strength;
@@ -66,5 +67,16 @@ Model build_model(const Scene& scene, const Mesh& mesh);
 
 /// Lumped nodal masses (rho t A / 3 per element corner) of the current topology.
 std::vector<double> lumped_node_mass(const Model& model);
+
+/// Reference centroid (x, y) of element e.
+inline std::array<double, 2> reference_centroid(const Model& model, std::int32_t e) {
+  std::array<double, 2> c{0.0, 0.0};
+  for (int k = 0; k < 3; ++k) {
+    const auto n = static_cast<std::size_t>(model.conn[3 * static_cast<std::size_t>(e) + k]);
+    c[0] += model.X[2 * n] / 3.0;
+    c[1] += model.X[2 * n + 1] / 3.0;
+  }
+  return c;
+}
 
 }  // namespace rockdd
