@@ -14,6 +14,7 @@
 #include "engine/contact/contact_stage.hpp"
 #include "engine/damage/damage_stage.hpp"
 #include "engine/damage/detachment.hpp"
+#include "engine/damage/fragment_anchors.hpp"
 #include "engine/errors.hpp"
 #include "engine/loading/external_loads.hpp"
 #include "engine/output/probes.hpp"
@@ -22,8 +23,11 @@
 namespace rockdd {
 namespace {
 
-/// Open-close iterations allowed in one step before it is redone with dt / 2.
+/// Open-close iterations allowed in one step before it is redone with dt / 2. Without inertia
+/// a sliding contact approaches its friction limit geometrically (sliding_stiffness), and
+/// those iterations mostly reuse the factor: they get more.
 constexpr int kMaxOpenCloseIterations = 12;
+constexpr int kMaxOpenCloseIterationsWithoutInertia = 30;
 /// Contacts that swing between answers may settle on their last one only in a step already
 /// redone this many times (a smaller dt did not help), and only in its closing iterations.
 constexpr int kRetriesBeforeSettling = 2;
@@ -32,8 +36,10 @@ constexpr int kSettlingIterations = 2;
 /// Doublings of the open-close force tolerance allowed to a chattering step (at most 4x).
 constexpr int kMaxRelaxationDoublings = 2;
 
-/// Spring (fraction of E t) tying a lone fragment to its place in steps without inertia.
-constexpr double kFragmentAnchor = 1.0;
+/// Springs (fractions of the fragment's E0 t) tying a fragment's corners to their copies in a
+/// neighbouring block, or (no copy there) to where the step started, in steps without inertia.
+constexpr double kRelativeAnchor = 1.0;
+constexpr double kAbsoluteAnchor = 1e-3;
 
 /// Re-solves of one step for newly damaged elements before the step goes on regardless.
 constexpr int kMaxDamageIterations = 20;
@@ -81,7 +87,7 @@ Simulation::Simulation(Scene scene, Model model)
 
   const std::size_t num_dofs = model_.X.size();
   for (auto* field : {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_,
-                      &u_trial_, &du_, &f_contact_, &positions_, &damage_force_})
+                      &u_trial_, &du_, &f_contact_, &positions_, &damage_force_, &anchor_force_})
     field->assign(num_dofs, 0.0);
   rhs_.assign(static_cast<std::size_t>(bc_.num_equations), 0.0);
   for (const InitialSpec& init : scene_.initial) {
@@ -119,6 +125,10 @@ void Simulation::rebuild_layout() {
     const std::vector<std::int32_t> triples = contact_->triples();
     conn.insert(conn.end(), triples.begin(), triples.end());
   }
+  // Fragment anchors between two nodes enter as (node, partner, partner).
+  first_anchor_slot_ = static_cast<std::int32_t>(conn.size() / 3);
+  for (const AnchorSpring& a : anchors_)
+    if (a.partner >= 0) conn.insert(conn.end(), {a.node, a.partner, a.partner});
   layout_ = build_stiffness_layout(conn, model_.num_nodes(), bc_.equation);
   values_.assign(static_cast<std::size_t>(layout_.pattern.nnz()), 0.0);
   if (contact_) base_values_.assign(values_.size(), 0.0);
@@ -133,9 +143,7 @@ void Simulation::prepare_system(double mass_coefficient) {
     std::span<double> target =
         contact_ ? std::span<double>(base_values_) : std::span<double>(values_);
     assemble_stiffness(model_, coloring_, layout_, bc_.equation, mass_coefficient, target);
-    for (std::size_t d = 0; d < 2 * fragment_anchor_.size(); ++d)
-      if (fragment_anchor_[d / 2] > 0.0 && bc_.equation[d] >= 0)
-        target[layout_.diagonal[bc_.equation[d]]] += fragment_anchor_[d / 2];
+    add_anchor_stiffness(target);
   }
   factorized_mass_coefficient_ = mass_coefficient;
   if (contact_) return;  // factorized in every open-close iteration, with the springs
@@ -160,7 +168,7 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
     const std::int32_t eq = bc_.equation[d];
     if (eq < 0) continue;
     const double m = model_.node_mass[d / 2];
-    rhs_[eq] = f_ext_[d] - f_int_[d] - f_contact_[d] +
+    rhs_[eq] = f_ext_[d] - f_int_[d] - f_contact_[d] - anchor_force_[d] +
                m * (inertia.velocity_coefficient * model_.v[d] +
                     inertia.acceleration_coefficient * acceleration_[d]);
   }
@@ -200,6 +208,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
       changed = contact_->detect(positions_);
     }
     if (changed) rebuild_layout();
+    if (scene_.analysis != Analysis::dynamic) contact_->set_force_scale(element_force_scale());
   }
   // Co-rotation: the stiffness follows the elements' frames once any has turned by more than
   // kFrameTolerance since K was assembled (the internal force always uses the exact frames).
@@ -218,6 +227,8 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     ScopedTimer timer(timers_.assembly);
     compute_internal_force(model_, coloring_, u_trial_, model_.strain, model_.stress, f_int_,
                            corotational_);
+    for (std::size_t d = 0; d < num_dofs; ++d) du_[d] = u_trial_[d] - model_.u[d];
+    anchor_forces(du_, anchor_force_);
   }
   // The damage iteration (METHOD.md): while elements newly damage, re-solve the same step
   // with their reduced moduli.
@@ -242,6 +253,17 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     char buf[160];
     std::snprintf(buf, sizeof buf,
                   "largest displacement increment %.3g m exceeds max_step_displacement", largest);
+    control.reject(step, buf);
+    return false;
+  }
+  // Contacts are found at the start of a step: a node that moves farther than the search
+  // distance in one step may pass through a block unseen (DDA's maximum displacement rule).
+  if (contact_ && !scene_.time.max_step_displacement && largest > contact_->parameters().reach) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "largest displacement increment %.3g m exceeds the contact search distance "
+                  "%.3g m (time.max_step_displacement sets another limit)",
+                  largest, contact_->parameters().reach);
     control.reject(step, buf);
     return false;
   }
@@ -277,6 +299,8 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
                                       StepControl& control) {
   const std::size_t num_dofs = model_.X.size();
   // The open-close iteration (a single solve without contacts): assume states, solve, check.
+  const int limit = scene_.analysis == Analysis::dynamic ? kMaxOpenCloseIterations
+                                                         : kMaxOpenCloseIterationsWithoutInertia;
   int iterations = 0;
   bool factor_current = false;  // the factor already holds this iteration's springs
   while (true) {
@@ -292,12 +316,12 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
       // Contacts that chatter near zero force are indeterminate, not wrong: past half the
       // iteration limit the tolerance doubles each iteration, up to 4x (kMaxRelaxationDoublings),
       // and the summary counts the steps that needed it.
-      const int past = std::min(iterations - kMaxOpenCloseIterations / 2, kMaxRelaxationDoublings);
+      const int past = std::min(iterations - limit / 2, kMaxRelaxationDoublings);
       const double scale = past > 0 ? std::ldexp(1.0, past) : 1.0;
       // Last resort, in the closing iterations of a step already redone kRetriesBeforeSettling
       // times: contacts that keep swinging between two answers settle on their last one.
       const bool settle = retries >= kRetriesBeforeSettling &&
-                          iterations > kMaxOpenCloseIterations - kSettlingIterations;
+                          iterations > limit - kSettlingIterations;
       changes = contact_->update_states(positions_, scale, settle, penetration);
       if (changes == 0 && scale > 1.0) {
         ++relaxed_steps_;
@@ -323,10 +347,10 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
         }
       }
     }
-    if (iterations >= kMaxOpenCloseIterations) {
+    if (iterations >= limit) {
       open_close_iterations_ += iterations;
       control.reject(step, "the open-close iteration did not settle in " +
-                               std::to_string(kMaxOpenCloseIterations) + " iterations");
+                               std::to_string(limit) + " iterations");
       return false;
     }
   }
@@ -358,10 +382,12 @@ void Simulation::commit_step(double dt) {
     contact_->add_springs(positions_, layout_, model_.num_elements(), {}, f_contact_);
     contact_->commit(positions_);
   }
+  anchor_forces(du_, anchor_force_);
   // The constraints' force on the body, and the work of all external forces (trapezoidal).
   double work = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) {
-    reaction_[d] = bc_.prescribed[d] ? f_int_[d] + f_contact_[d] - f_ext_[d] : 0.0;
+    reaction_[d] =
+        bc_.prescribed[d] ? f_int_[d] + f_contact_[d] + anchor_force_[d] - f_ext_[d] : 0.0;
     work += 0.5 * (f_ext_old_[d] + reaction_old_[d] + f_ext_[d] + reaction_[d]) * du_[d];
   }
   external_work_ += work;
@@ -380,7 +406,7 @@ void Simulation::detach_fractured_elements() {
   // Everything built on the nodes follows the split: the step state, the constraints and
   // loads (named curves carried their element sides over), probes, colouring and contacts.
   for (auto* field : {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_,
-                      &u_trial_, &du_, &f_contact_, &positions_, &damage_force_})
+                      &u_trial_, &du_, &f_contact_, &positions_, &damage_force_, &anchor_force_})
     follow_split_nodes(detachment.node_origin, *field);
   bc_ = build_boundary_conditions(scene_, model_);
   // Without inertia a piece that fracture cut loose is held by nothing (lone elements are
@@ -402,30 +428,67 @@ void Simulation::detach_fractured_elements() {
   probes->carry_state_from(*probes_);
   probes_ = std::move(probes);
   coloring_ = color_elements(model_.conn, model_.num_nodes());
-  anchor_fragments();
+  if (scene_.analysis != Analysis::dynamic)
+    anchors_ = anchor_fragments(model_, kRelativeAnchor, kAbsoluteAnchor);
   auto contact = std::make_unique<ContactStage>(scene_, model_);
   if (contact_) contact->carry_contacts_from(*contact_);
   contact_ = std::move(contact);
   rebuild_layout();
 }
 
-void Simulation::anchor_fragments() {
-  // Without inertia (static and quasi-static steps) a lone detached element that no contact
-  // holds sideways is a floating block: its friction load alone would throw it. It is tied
-  // to where each step starts by a spring of kFragmentAnchor E t: debris, not structure.
-  if (scene_.analysis == Analysis::dynamic) return;
-  // (Only its free dofs: a fragment on a platen that holds one direction slides in the other.)
-  std::vector<std::int32_t> elements_in_block(static_cast<std::size_t>(model_.num_blocks), 0);
-  for (std::int32_t e = 0; e < model_.num_elements(); ++e)
-    ++elements_in_block[model_.element_block[e]];
-  fragment_anchor_.assign(static_cast<std::size_t>(model_.num_nodes()), 0.0);
-  for (std::int32_t e = 0; e < model_.num_elements(); ++e) {
-    const std::int32_t b = model_.element_block[e];
-    if (elements_in_block[b] != 1) continue;
-    for (int k = 0; k < 3; ++k)
-      fragment_anchor_[model_.conn[3 * e + k]] =
-          kFragmentAnchor * model_.young[e] * model_.thickness;
+void Simulation::add_anchor_stiffness(std::span<double> target) const {
+  auto add = [&](std::size_t slot, int a, int b, double k) {
+    // Entry (a, b), a <= b, of the slot's upper triangle, row-major.
+    const int entry = a * 6 - a * (a - 1) / 2 + (b - a);
+    const std::int32_t to = layout_.scatter[slot * kElementUpperEntries + entry];
+    if (to >= 0) target[to] += k;
+  };
+  std::size_t slot = static_cast<std::size_t>(first_anchor_slot_);
+  for (const AnchorSpring& a : anchors_) {
+    if (a.partner < 0) {
+      for (int c = 0; c < 2; ++c) {
+        const std::int32_t eq = bc_.equation[2 * static_cast<std::size_t>(a.node) + c];
+        if (eq >= 0) target[layout_.diagonal[eq]] += a.stiffness;
+      }
+      continue;
+    }
+    for (int c = 0; c < 2; ++c) {
+      add(slot, c, c, a.stiffness);
+      add(slot, 2 + c, 2 + c, a.stiffness);
+      add(slot, c, 2 + c, -a.stiffness);
+    }
+    ++slot;
   }
+}
+
+void Simulation::anchor_forces(std::span<const double> du, std::vector<double>& force) const {
+  force.assign(du.size(), 0.0);
+  for (const AnchorSpring& a : anchors_)
+    for (int c = 0; c < 2; ++c) {
+      const std::size_t n = 2 * static_cast<std::size_t>(a.node) + c;
+      if (a.partner < 0) {
+        force[n] += a.stiffness * du[n];
+        continue;
+      }
+      const std::size_t p = 2 * static_cast<std::size_t>(a.partner) + c;
+      const double f = a.stiffness * (du[n] - du[p]);
+      force[n] += f;
+      force[p] -= f;
+    }
+}
+
+double Simulation::element_force_scale() const {
+  // The largest force an element edge carries, about |sigma| sqrt(2 A) t, and the largest
+  // load or reaction on a node.
+  double scale = 0.0;
+  for (std::size_t d = 0; d < model_.X.size(); ++d)
+    scale = std::max({scale, std::abs(reaction_old_[d]), std::abs(f_ext_old_[d])});
+  for (std::int32_t e = 0; e < model_.num_elements(); ++e) {
+    const double* sigma = &model_.stress[3 * static_cast<std::size_t>(e)];
+    const double largest = std::max({std::abs(sigma[0]), std::abs(sigma[1]), std::abs(sigma[2])});
+    scale = std::max(scale, largest * std::sqrt(2.0 * model_.area0[e]) * model_.thickness);
+  }
+  return scale;
 }
 
 EnergyBalance Simulation::energy() const {
@@ -596,6 +659,8 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
     defaults["contact.normal_stiffness"] = contact_->parameters().normal_stiffness;
     defaults["contact.shear_stiffness"] = contact_->parameters().shear_stiffness;
     defaults["contact.reach"] = contact_->parameters().reach;
+    if (!scene_.time.max_step_displacement)
+      defaults["time.max_step_displacement"] = contact_->parameters().reach;
   }
   s["defaults"] = defaults;
   s["timers"] = {{"assembly", timers_.assembly}, {"factorization", timers_.factorization},

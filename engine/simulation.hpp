@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
+#include "engine/damage/fragment_anchors.hpp"
 #include "engine/loading/boundary_conditions.hpp"
 #include "engine/model/model.hpp"
 #include "engine/output/run_outputs.hpp"
@@ -91,8 +93,12 @@ class Simulation {
   /// After a committed step: damaged elements become blocks, and what hangs on the nodes
   /// is rebuilt for the new topology.
   void detach_fractured_elements();
-  /// Ties lone fragments to their place in steps without inertia (fragment_anchor_).
-  void anchor_fragments();
+  /// Adds the fragment anchors' springs to K (values over layout_).
+  void add_anchor_stiffness(std::span<double> target) const;
+  /// The anchors' forces for a step increment du (2 per node).
+  void anchor_forces(std::span<const double> du, std::vector<double>& force) const;
+  /// Force scale of the committed state (N): the largest element edge force, load or reaction.
+  double element_force_scale() const;
   EnergyBalance energy() const;
   void evaluate_probes(std::vector<double>& row);
   nlohmann::json summary(const RunResult& result, double wall_seconds, int threads) const;
@@ -130,7 +136,9 @@ class Simulation {
   };
   std::optional<FirstDamage> first_damage_, attempt_first_damage_;
   double attempt_time_ = 0.0;            // time at the end of the step being attempted
-  std::vector<double> fragment_anchor_;  // per node: spring to the step's start (N/m), or 0
+  std::vector<AnchorSpring> anchors_;  // fragments tied in steps without inertia
+  std::int32_t first_anchor_slot_ = 0; // layout slot of the first two-node anchor
+  std::vector<double> anchor_force_;   // the anchors' force at the step's trial increment
 
   // Step state (2 per node unless noted).
   std::vector<double> acceleration_, f_int_, f_ext_, f_ext_old_, reaction_, reaction_old_;

@@ -11,6 +11,12 @@
 namespace rockdd {
 namespace {
 
+/// Spring of a sliding contact, as a fraction of ks, in analyses without inertia: about the
+/// shear stiffness of a damaged element (a tenth of E0 t, against ks = 8 E0 t), so that the
+/// open-close iteration moves a sliding contact most of the way to its friction limit per
+/// iteration without throwing a fragment whose other contacts are open.
+constexpr double kSlidingStiffnessFraction = 0.03;
+
 /// The geometry of contact c at `positions`.
 kernels::VertexEdge geometry(const Contact& c, std::span<const double> positions) {
   const double p[2] = {positions[2 * c.vertex], positions[2 * c.vertex + 1]};
@@ -125,6 +131,11 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
       given_kn ? *given_kn * model.thickness : 20.0 * stiffest * model.thickness;
   parameters_.shear_stiffness =
       given_ks ? *given_ks * model.thickness : 0.4 * parameters_.normal_stiffness;
+  // Without inertia nothing but its own contacts holds a block tangentially, and friction as a
+  // bare load would throw one that is held on one side only: a sliding contact keeps a
+  // spring of a small fraction of ks (ContactParameters::sliding_stiffness).
+  if (scene.analysis != Analysis::dynamic)
+    parameters_.sliding_stiffness = kSlidingStiffnessFraction * parameters_.shear_stiffness;
   // Candidates within half the median boundary edge: near enough to close within a step.
   std::vector<double> lengths;
   for (std::size_t i = 0; i + 1 < boundary_.edge_nodes.size(); i += 2) {
@@ -179,12 +190,11 @@ void ContactStage::spring_changes(std::span<const ContactState> before,
     const Contact& c = contacts_[i];
     const bool normal_was = before[i] != ContactState::open,
                normal_is = c.state != ContactState::open;
-    const bool shear_was = before[i] == ContactState::locked,
-               shear_is = c.state == ContactState::locked;
+    const double shear_change = shear_stiffness(c.state) - shear_stiffness(before[i]);
     if (normal_was != normal_is)
       column(c, c.g, parameters_.normal_stiffness, normal_is ? added : removed);
-    if (shear_was != shear_is)
-      column(c, c.t, parameters_.shear_stiffness, shear_is ? added : removed);
+    if (shear_change != 0.0)
+      column(c, c.t, std::abs(shear_change), shear_change > 0.0 ? added : removed);
   }
 }
 
@@ -301,8 +311,13 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
         for (int s = 0; s < 6; ++s) k[6 * r + s] += ks * c.t[r] * c.t[s];
       add_to_nodes(c, c.t, ks * (c.shear_spring + step_slip(c, positions)), force);
     } else {
-      // Sliding: Coulomb friction opposes the slip, as a load from the last normal force.
-      add_to_nodes(c, c.t, -c.friction_force, force);
+      // Sliding: Coulomb friction opposes the slip, as a load from the last normal force,
+      // and without inertia a spring k_slide on the slip since (see ContactParameters).
+      const double k_slide = parameters_.sliding_stiffness;
+      for (int r = 0; r < 6; ++r)
+        for (int s = 0; s < 6; ++s) k[6 * r + s] += k_slide * c.t[r] * c.t[s];
+      add_to_nodes(c, c.t, -c.friction_force + k_slide * (step_slip(c, positions) - c.slide_slip),
+                   force);
     }
     if (values.empty()) continue;
     const std::int32_t* to =
@@ -316,7 +331,7 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
 
 int ContactStage::update_states(std::span<const double> positions, double tolerance_scale,
                                 bool settle, double& largest_penetration) {
-  const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
+  const double kn = parameters_.normal_stiffness;
   largest_penetration = 0.0;
   double largest_gap = 0.0;  // the largest normal force, over kn: penetration or bond tension
   for (const Contact& c : contacts_)
@@ -329,21 +344,18 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
   const bool runaway = largest_penetration > parameters_.penetration_limit;
   if (runaway) settle = false;
   // The iteration has settled when the forces the solve assumed match the states its result
-  // implies, to a small fraction of the largest contact force. Contacts that carry next to
-  // nothing would otherwise flip back and forth forever: a contact changes between open and
-  // closed only when its gap leaves the band [-tolerance, tolerance] / kn, and a change of
-  // shear force smaller than the tolerance does not hold the iteration back.
-  const double tolerance = tolerance_scale * parameters_.force_tolerance * kn * largest_gap;
+  // implies, to a small fraction of the largest contact force (or of the forces that flow
+  // through the elements, when the contacts carry less). Contacts that carry next to nothing
+  // would otherwise flip back and forth forever: a contact changes between open and closed
+  // only when its gap leaves the band [-tolerance, tolerance] / kn, and a change of shear
+  // force smaller than the tolerance does not hold the iteration back.
+  const double tolerance =
+      tolerance_scale * parameters_.force_tolerance * std::max(kn * largest_gap, force_scale_);
   const double band = tolerance / kn;
   int changes = 0;
   for (Contact& c : contacts_) {
     const double gap = linear_gap(c, positions);
-    const double slip = step_slip(c, positions);
     const ContactState before = c.state;
-    // The shear force this solve assumed, at its result.
-    const double assumed = before == ContactState::locked    ? ks * (c.shear_spring + slip)
-                           : before == ContactState::sliding ? -c.friction_force
-                                                             : 0.0;
     const bool was_closed = before != ContactState::open;
     // A contact that has already gone back and forth in this step stays closed while it
     // pulls less than a tenth of the largest contact force: the answer lies between its
@@ -369,6 +381,7 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       c.shear_spring = 0.0;
       continue;
     }
+    const double slip = step_slip(c, positions);
     if (!was_closed) {
       // It touched during the step, where its gap crossed zero (linear in between): that is
       // its anchor. Anchoring it at the end of the step would let it skip a step of sliding,
@@ -376,50 +389,11 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       const double touched = c.gap_start > 0.0 ? c.gap_start / (c.gap_start - gap) : 0.0;
       c.shear_spring = -std::clamp(touched, 0.0, 1.0) * slip;
     }
-    // A contact in tension holds none. Friction acts as a load from the last solve's normal
-    // force, an explicit coupling that need not converge: near a crack the normal forces of
-    // neighbouring contacts move each other's friction, and a wedged fragment's friction
-    // presses it in harder, which raises the friction again. Once a contact's shear has gone
-    // back and forth, friction takes the normal force it had at the start of the step, if
-    // it was pressed then (lagged by a step, like the load), or else the mean of this normal
-    // force and the one it used last, which damps the swing; when the iteration settles the
-    // two agree.
-    double normal_force = std::max(-kn * gap, 0.0);
-    if (c.shear_swings >= 2)
-      normal_force = c.start_normal_force >= 0.0 ? c.start_normal_force
-                                                 : 0.5 * (normal_force + c.used_normal_force);
-    c.used_normal_force = normal_force;
-    // Coulomb's law as the return mapping of a rigid-plastic spring: the shear past the
-    // anchor either fits within the capacity (locked) or the anchor follows the contact so
-    // that the spring carries exactly the capacity (sliding, with no shear stiffness and the
-    // friction as a load in the next solve).
-    double capacity = c.friction * normal_force + (c.bonded ? c.cohesion * c.area : 0.0);
-    const double elastic = c.shear_spring + slip;
-    if (c.bonded && ks * std::abs(elastic) > capacity + tolerance) {
-      // Sheared past its cohesion: the bond breaks and only friction is left.
-      c.bonded = false;
-      ++changes;
-      capacity = c.friction * normal_force;
-    }
-    double implied = 0.0;
-    if (capacity > 0.0 && ks * std::abs(elastic) <= capacity) {
-      c.state = ContactState::locked;
-      implied = ks * elastic;
-    } else if (capacity > 0.0 && before == ContactState::sliding && elastic * c.slip_sign < 0.0) {
-      // It slid back past its anchor under the friction load: friction was more than enough
-      // to hold it, so it sticks here, its spring set to carry the friction the solve had:
-      // the forces balance at these positions in either state.
-      c.state = ContactState::locked;
-      c.shear_spring = c.slip_sign * capacity / ks - slip;
-      implied = c.slip_sign * capacity;
-    } else {
-      c.state = ContactState::sliding;
-      c.slip_sign = elastic > 0.0 ? 1.0 : elastic < 0.0 ? -1.0 : 0.0;
-      c.shear_spring = c.slip_sign * capacity / ks - slip;
-      c.friction_force = -c.slip_sign * capacity;
-      implied = -c.friction_force;
-    }
-    if (was_closed && std::abs(implied - assumed) > tolerance) {
+    const ShearUpdate shear = parameters_.sliding_stiffness > 0.0
+                                  ? update_shear_without_inertia(c, gap, slip, tolerance)
+                                  : update_shear_with_inertia(c, gap, slip, tolerance);
+    changes += shear.bond_broke ? 1 : 0;
+    if (was_closed && std::abs(shear.implied - shear.assumed) > tolerance) {
       // Settling, a contact whose shear has already swung keeps the state this solve implies
       // without holding the iteration back.
       if (settle && c.shear_swings >= 2) {
@@ -431,6 +405,105 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
     }
   }
   return runaway ? std::max(changes, 1) : changes;
+}
+
+double ContactStage::friction_normal_force(Contact& c, double gap) const {
+  // A contact in tension holds none. Friction is coupled to the normal force explicitly (the
+  // last solve's), which need not converge: near a crack the normal forces of neighbouring
+  // contacts move each other's friction, and a wedged fragment's friction presses it in
+  // harder, which raises the friction again. Once a contact's shear has gone back and forth,
+  // friction takes the normal force it had at the start of the step, if it was pressed then
+  // (lagged by a step, like the load), or else the mean of this normal force and the one it
+  // used last, which damps the swing; when the iteration settles the two agree.
+  double normal_force = std::max(-parameters_.normal_stiffness * gap, 0.0);
+  if (c.shear_swings >= 2)
+    normal_force = c.start_normal_force >= 0.0 ? c.start_normal_force
+                                               : 0.5 * (normal_force + c.used_normal_force);
+  c.used_normal_force = normal_force;
+  return normal_force;
+}
+
+double ContactStage::shear_capacity(Contact& c, double normal_force, double elastic_force,
+                                    double tolerance, bool& bond_broke) const {
+  double capacity = c.friction * normal_force + (c.bonded ? c.cohesion * c.area : 0.0);
+  bond_broke = false;
+  if (c.bonded && std::abs(elastic_force) > capacity + tolerance) {
+    // Sheared past its cohesion: the bond breaks and only friction is left.
+    c.bonded = false;
+    bond_broke = true;
+    capacity = c.friction * normal_force;
+  }
+  return capacity;
+}
+
+ContactStage::ShearUpdate ContactStage::update_shear_with_inertia(Contact& c, double gap,
+                                                                  double slip, double tolerance) {
+  const double ks = parameters_.shear_stiffness;
+  const ContactState before = c.state;
+  ShearUpdate out;
+  // The shear force this solve assumed, at its result (none if it was open).
+  out.assumed = before == ContactState::locked    ? ks * (c.shear_spring + slip)
+                : before == ContactState::sliding ? -c.friction_force
+                                                  : 0.0;
+  const double normal_force = friction_normal_force(c, gap);
+  // Coulomb's law as the return mapping of a rigid-plastic spring: the shear past the
+  // anchor either fits within the capacity (locked) or the anchor follows the contact so
+  // that the spring carries exactly the capacity (sliding, with no shear stiffness and the
+  // friction as a load in the next solve).
+  const double elastic = c.shear_spring + slip;
+  const double capacity =
+      shear_capacity(c, normal_force, ks * elastic, tolerance, out.bond_broke);
+  if (capacity > 0.0 && ks * std::abs(elastic) <= capacity) {
+    c.state = ContactState::locked;
+    out.implied = ks * elastic;
+  } else if (capacity > 0.0 && before == ContactState::sliding && elastic * c.slip_sign < 0.0) {
+    // It slid back past its anchor under the friction load: friction was more than enough
+    // to hold it, so it sticks here, its spring set to carry the friction the solve had:
+    // the forces balance at these positions in either state.
+    c.state = ContactState::locked;
+    c.shear_spring = c.slip_sign * capacity / ks - slip;
+    out.implied = c.slip_sign * capacity;
+  } else {
+    c.state = ContactState::sliding;
+    c.slip_sign = elastic > 0.0 ? 1.0 : elastic < 0.0 ? -1.0 : 0.0;
+    c.shear_spring = c.slip_sign * capacity / ks - slip;
+    c.friction_force = -c.slip_sign * capacity;
+    out.implied = -c.friction_force;
+  }
+  return out;
+}
+
+ContactStage::ShearUpdate ContactStage::update_shear_without_inertia(Contact& c, double gap,
+                                                                     double slip,
+                                                                     double tolerance) {
+  const double ks = parameters_.shear_stiffness, k_slide = parameters_.sliding_stiffness;
+  const ContactState before = c.state;
+  ShearUpdate out;
+  // The shear force the solve had at its result, from the spring of the contact's state: a
+  // sliding contact carries the friction of the last iterate plus k_slide times the slip
+  // since, a closing one the spring from where it touched.
+  out.assumed = before == ContactState::sliding
+                    ? -c.friction_force + k_slide * (slip - c.slide_slip)
+                    : ks * (c.shear_spring + slip);
+  const double capacity =
+      shear_capacity(c, friction_normal_force(c, gap), out.assumed, tolerance, out.bond_broke);
+  if (before == ContactState::open || std::abs(out.assumed) <= capacity) {
+    // A closing contact starts locked: its normal force so far is the overlap of a solve
+    // without it, far more than it will carry, and friction from it would throw a fragment
+    // that nothing else holds. A sliding contact back within the cone sticks where it is,
+    // carrying the force it has.
+    if (before == ContactState::sliding) c.shear_spring = out.assumed / ks - slip;
+    c.state = ContactState::locked;
+    out.implied = out.assumed;
+    return out;
+  }
+  c.state = ContactState::sliding;
+  c.slip_sign = out.assumed > 0.0 ? 1.0 : -1.0;
+  c.friction_force = -c.slip_sign * capacity;
+  c.slide_slip = slip;
+  c.shear_spring = c.slip_sign * capacity / ks - slip;  // where it sticks, should it stop here
+  out.implied = c.slip_sign * capacity;
+  return out;
 }
 
 void ContactStage::commit(std::span<const double> positions) {

@@ -42,6 +42,7 @@ struct Contact {
   double g[6] = {}, t[6] = {};
   double gap_offset = 0.0, slip_offset = 0.0;
   double gap_start = 0.0;  // the gap at the start of the step
+  double slide_slip = 0.0;  // step slip where friction_force was set (without inertia)
 };
 
 /// Joint parameters that contacts use, derived from the scene.
@@ -52,6 +53,10 @@ struct ContactParameters {
   double force_tolerance = 1e-2;   // settled: forces within this fraction of the largest
   double penetration_limit = 0.0;  // settled only with no contact deeper than this, m
   double thickness = 1.0;
+  // Shear spring of a sliding contact, on its slip since the last iterate (N/m): 0 with
+  // inertia (friction is a bare load), a small fraction of ks without (analysis "static"
+  // or "quasi-static"), where nothing else would hold a block that slides.
+  double sliding_stiffness = 0.0;
 };
 
 /// Contact detection, springs and states over a step.
@@ -104,9 +109,37 @@ class ContactStage {
   long normal_swings_settled() const { return normal_swings_settled_; }
 
   const ContactParameters& parameters() const { return parameters_; }
+  /// Forces below force_tolerance x this scale (N) settle: the forces that flow through
+  /// the model's elements, so that a fragment carrying next to nothing is not held to a
+  /// tolerance far below what matters for the rest.
+  void set_force_scale(double scale) { force_scale_ = scale; }
+
+  /// The shear stiffness a contact in `state` adds to K: ks locked, k_slide sliding.
+  double shear_stiffness(ContactState state) const {
+    return state == ContactState::locked    ? parameters_.shear_stiffness
+           : state == ContactState::sliding ? parameters_.sliding_stiffness
+                                            : 0.0;
+  }
   std::size_t size() const { return contacts_.size(); }
 
  private:
+  /// The shear force a closed contact's solve assumed and the one its result implies.
+  struct ShearUpdate {
+    double assumed = 0.0, implied = 0.0;
+    bool bond_broke = false;
+  };
+  /// Coulomb's law with inertia: friction is a load from the last normal force.
+  ShearUpdate update_shear_with_inertia(Contact& c, double gap, double slip, double tolerance);
+  /// Coulomb's law without inertia: a sliding contact keeps the spring sliding_stiffness.
+  ShearUpdate update_shear_without_inertia(Contact& c, double gap, double slip,
+                                           double tolerance);
+  /// The normal force friction uses at gap `gap` (lagged once the shear has swung).
+  double friction_normal_force(Contact& c, double gap) const;
+  /// Friction (and cohesion, while bonded) under `normal_force`; a bond sheared past it by
+  /// the elastic force breaks for good.
+  double shear_capacity(Contact& c, double normal_force, double elastic_force, double tolerance,
+                        bool& bond_broke) const;
+
   ContactParameters parameters_;
   BlockBoundary boundary_;
   ContactRules rules_;
@@ -115,6 +148,8 @@ class ContactStage {
   std::vector<double> joint_friction_, joint_cohesion_, joint_tensile_;  // per body pair
   std::vector<double> vertex_area_;  // per boundary vertex, see Contact::area
   long shear_swings_settled_ = 0, normal_swings_settled_ = 0;
+  double force_scale_ = 0.0;
+
   bool started_ = false;  // a step has been committed: contacts that form now are not bonded
 };
 

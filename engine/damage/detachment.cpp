@@ -72,6 +72,9 @@ Detachment detach_damaged_elements(Model& model, std::span<const double> thresho
   for (std::int32_t e = 0; e < num_elements; ++e)
     for (int k = 0; k < 3; ++k) model.node_block[model.conn[3 * e + k]] = model.element_block[e];
   model.node_mass = lumped_node_mass(model);
+  std::vector<std::int32_t> root(topology.node_origin.size());
+  for (std::size_t n = 0; n < root.size(); ++n) root[n] = model.node_root[topology.node_origin[n]];
+  model.node_root = std::move(root);
   result.node_origin = std::move(topology.node_origin);
   return result;
 }

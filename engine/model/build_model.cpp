@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <map>
+#include <numeric>
 #include <string>
 
 #include "engine/errors.hpp"
@@ -146,6 +147,8 @@ Model build_model(const Scene& scene, const Mesh& mesh) {
   model.strain.assign(3 * static_cast<std::size_t>(num_elements), 0.0);
   model.stress.assign(3 * static_cast<std::size_t>(num_elements), 0.0);
   model.node_mass = lumped_node_mass(model);
+  model.node_root.resize(static_cast<std::size_t>(num_nodes));
+  std::iota(model.node_root.begin(), model.node_root.end(), 0);
 
   // Named curves: each mesh edge maps to the element side that carries it.
   std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> slot_of_edge;

@@ -31,6 +31,7 @@ struct Model {
   std::vector<double> v;          // velocity
   std::vector<double> node_mass;  // lumped mass (kg), one per node
   std::vector<std::int32_t> node_block;
+  std::vector<std::int32_t> node_root;  // the node it was split from by fracture (or itself)
 
   // Elements (CST, counter-clockwise).
   std::vector<std::int32_t> conn;              // 3 per element
