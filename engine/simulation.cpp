@@ -309,7 +309,7 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
     if (!contact_) break;
     double penetration = 0.0;
     int changes = 0;
-    const std::vector<ContactState> before = contact_->states();
+    const std::vector<ContactSprings> before = contact_->springs();
     {
       ScopedTimer timer(timers_.contact);
       for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + model_.u[d] + du_[d];
@@ -477,6 +477,27 @@ void Simulation::anchor_forces(std::span<const double> du, std::vector<double>& 
     }
 }
 
+bool Simulation::Softening::observe(long at_step, double at_time, double v, double drop) {
+  step = at_step;
+  time = at_time;
+  value = v;
+  if (std::abs(v) > peak) {
+    peak = std::abs(v);
+    peak_step = at_step;
+    peak_time = at_time;
+  }
+  reached = peak > 0.0 && std::abs(v) <= (1.0 - drop) * peak;
+  return reached;
+}
+
+nlohmann::json Simulation::Softening::summary(const TimeSpec& spec) const {
+  return {{"probe", spec.softening_probe}, {"fraction", *spec.stop_at_softening},
+          {"peak", peak},                  {"peak_step", peak_step},
+          {"peak_time", peak_time},        {"reached", reached},
+          {"step", step},                  {"time", time},
+          {"value", value}};
+}
+
 double Simulation::element_force_scale() const {
   // The largest force an element edge carries, about |sigma| sqrt(2 A) t, and the largest
   // load or reaction on a node.
@@ -534,16 +555,30 @@ RunResult Simulation::run(const RunOptions& options) {
                            ? 0.0
                            : (f_ext_old_[d] - f_int_[d]) / model_.node_mass[d / 2];
   std::vector<double> row;
+  // The end on softening (time.stop_at_softening) watches one history column.
+  const bool watch_softening = scene_.time.stop_at_softening.has_value();
+  const auto& columns = probes_->columns();
+  const std::size_t softening_column =
+      watch_softening
+          ? static_cast<std::size_t>(std::find(columns.begin(), columns.end(),
+                                               scene_.time.softening_probe) -
+                                     columns.begin())
+          : 0;
   auto record = [&](long step, double time, double dt, bool last) {
-    if (!outputs) return;
+    if (!outputs && !watch_softening) return last;
     ScopedTimer timer(timers_.output);
     evaluate_probes(row);
+    if (watch_softening && softening_.observe(step, time, row[softening_column],
+                                              *scene_.time.stop_at_softening))
+      last = true;
+    if (!outputs) return last;
     outputs->history_row(step, time, dt, row, energy());
     const int every = scene_.output.every;
     if (last || (every > 0 && step % every == 0)) {
       outputs->frame(model_, step, time);
       probes_->write_profiles(model_, outputs->dir() / "profiles", step);
     }
+    return last;
   };
   record(0, 0.0, control.dt(), false);
 
@@ -580,12 +615,13 @@ RunResult Simulation::run(const RunOptions& options) {
       steps_ = step;
       control.accept(true);
       const bool last = t >= end_time * (1.0 - 1e-12);
-      record(step, t, dt, last || fracture_failure);
+      const bool stop = record(step, t, dt, last || fracture_failure.has_value());
       if (fracture_failure) {
         frame_written = true;
         throw *fracture_failure;
       }
       if (options.on_step) options.on_step({step, t, dt, end_time, planned}, model_);
+      if (stop) break;
     }
   } catch (const RunFailure& failure) {
     result.ok = false;
@@ -599,6 +635,7 @@ RunResult Simulation::run(const RunOptions& options) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.summary = summary(result, wall, threads);
   result.summary["dt_changes"] = control.changes();
+  if (watch_softening) result.summary["softening"] = softening_.summary(scene_.time);
   if (outputs) {
     for (const auto& [column, peak] : outputs->peaks()) result.summary["peaks"][column] = peak;
     outputs->finish(result.summary);

@@ -145,6 +145,19 @@ class Simulation {
   std::vector<double> u_trial_, du_, rhs_;  // rhs_ is per equation
   double external_work_ = 0.0;
 
+  /// The peak of the watched history column and whether it has softened past the scene's
+  /// fraction (time.stop_at_softening).
+  struct Softening {
+    double peak = 0.0, peak_time = 0.0;
+    long peak_step = 0;
+    bool reached = false;
+    long step = 0;
+    double time = 0.0, value = 0.0;
+    /// True once |value| has fallen `drop` below the largest magnitude seen before.
+    bool observe(long at_step, double at_time, double v, double drop);
+    nlohmann::json summary(const TimeSpec& time) const;
+  };
+  Softening softening_;
   long steps_ = 0, redone_steps_ = 0;
   StageTimers timers_;
 };

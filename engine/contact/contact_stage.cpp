@@ -16,6 +16,8 @@ namespace {
 /// open-close iteration moves a sliding contact most of the way to its friction limit per
 /// iteration without throwing a fragment whose other contacts are open.
 constexpr double kSlidingStiffnessFraction = 0.03;
+/// The softest a sliding contact's spring gets, as a fraction of its first stiffness.
+constexpr double kMinSlidingStiffness = 1.0 / 64.0;
 
 /// The geometry of contact c at `positions`.
 kernels::VertexEdge geometry(const Contact& c, std::span<const double> positions) {
@@ -163,13 +165,14 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   }
 }
 
-std::vector<ContactState> ContactStage::states() const {
-  std::vector<ContactState> out(contacts_.size());
-  for (std::size_t i = 0; i < contacts_.size(); ++i) out[i] = contacts_[i].state;
+std::vector<ContactSprings> ContactStage::springs() const {
+  std::vector<ContactSprings> out(contacts_.size());
+  for (std::size_t i = 0; i < contacts_.size(); ++i)
+    out[i] = {contacts_[i].state != ContactState::open, shear_stiffness(contacts_[i])};
   return out;
 }
 
-void ContactStage::spring_changes(std::span<const ContactState> before,
+void ContactStage::spring_changes(std::span<const ContactSprings> before,
                                   std::span<const std::int32_t> equation, LowRankTerms& added,
                                   LowRankTerms& removed) const {
   added.clear();
@@ -188,11 +191,10 @@ void ContactStage::spring_changes(std::span<const ContactState> before,
   };
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
-    const bool normal_was = before[i] != ContactState::open,
-               normal_is = c.state != ContactState::open;
-    const double shear_change = shear_stiffness(c.state) - shear_stiffness(before[i]);
-    if (normal_was != normal_is)
+    const bool normal_is = c.state != ContactState::open;
+    if (before[i].normal != normal_is)
       column(c, c.g, parameters_.normal_stiffness, normal_is ? added : removed);
+    const double shear_change = shear_stiffness(c) - before[i].shear_stiffness;
     if (shear_change != 0.0)
       column(c, c.t, std::abs(shear_change), shear_change > 0.0 ? added : removed);
   }
@@ -273,6 +275,7 @@ bool ContactStage::detect(std::span<const double> positions) {
                 : c.friction > 0.0 || c.bonded ? ContactState::locked
                                                : ContactState::sliding;
     }
+    c.slide_stiffness = parameters_.sliding_stiffness;
     linearise(c, positions);
     c.start_normal_force = c.state != ContactState::open && c.gap_start < 0.0
                                ? -parameters_.normal_stiffness * c.gap_start
@@ -313,7 +316,7 @@ void ContactStage::add_springs(std::span<const double> positions, const Stiffnes
     } else {
       // Sliding: Coulomb friction opposes the slip, as a load from the last normal force,
       // and without inertia a spring k_slide on the slip since (see ContactParameters).
-      const double k_slide = parameters_.sliding_stiffness;
+      const double k_slide = c.slide_stiffness;
       for (int r = 0; r < 6; ++r)
         for (int s = 0; s < 6; ++s) k[6 * r + s] += k_slide * c.t[r] * c.t[s];
       add_to_nodes(c, c.t, -c.friction_force + k_slide * (step_slip(c, positions) - c.slide_slip),
@@ -476,14 +479,14 @@ ContactStage::ShearUpdate ContactStage::update_shear_with_inertia(Contact& c, do
 ContactStage::ShearUpdate ContactStage::update_shear_without_inertia(Contact& c, double gap,
                                                                      double slip,
                                                                      double tolerance) {
-  const double ks = parameters_.shear_stiffness, k_slide = parameters_.sliding_stiffness;
+  const double ks = parameters_.shear_stiffness;
   const ContactState before = c.state;
   ShearUpdate out;
   // The shear force the solve had at its result, from the spring of the contact's state: a
-  // sliding contact carries the friction of the last iterate plus k_slide times the slip
-  // since, a closing one the spring from where it touched.
+  // sliding contact carries the friction of the last iterate plus its sliding spring times
+  // the slip since, a closing one the spring from where it touched.
   out.assumed = before == ContactState::sliding
-                    ? -c.friction_force + k_slide * (slip - c.slide_slip)
+                    ? -c.friction_force + c.slide_stiffness * (slip - c.slide_slip)
                     : ks * (c.shear_spring + slip);
   const double capacity =
       shear_capacity(c, friction_normal_force(c, gap), out.assumed, tolerance, out.bond_broke);
@@ -494,15 +497,28 @@ ContactStage::ShearUpdate ContactStage::update_shear_without_inertia(Contact& c,
     // carrying the force it has.
     if (before == ContactState::sliding) c.shear_spring = out.assumed / ks - slip;
     c.state = ContactState::locked;
+    c.slide_stiffness = parameters_.sliding_stiffness;
+    c.last_excess = 0.0;
     out.implied = out.assumed;
     return out;
   }
+  const double sign = out.assumed > 0.0 ? 1.0 : -1.0;
+  const double excess = std::abs(out.assumed) - capacity;
+  // A contact that keeps sliding the same way and got less than halfway to its friction
+  // limit is held back by its own spring more than by the rock around it (a fragment that
+  // slides between open faces): its spring halves, down to kMinSlidingStiffness of the
+  // first, so that it reaches the limit in a few iterations instead of hundreds.
+  if (before == ContactState::sliding && sign == c.slip_sign && excess > 0.5 * c.last_excess &&
+      excess > tolerance)
+    c.slide_stiffness =
+        std::max(0.5 * c.slide_stiffness, kMinSlidingStiffness * parameters_.sliding_stiffness);
+  c.last_excess = excess;
   c.state = ContactState::sliding;
-  c.slip_sign = out.assumed > 0.0 ? 1.0 : -1.0;
-  c.friction_force = -c.slip_sign * capacity;
+  c.slip_sign = sign;
+  c.friction_force = -sign * capacity;
   c.slide_slip = slip;
-  c.shear_spring = c.slip_sign * capacity / ks - slip;  // where it sticks, should it stop here
-  out.implied = c.slip_sign * capacity;
+  c.shear_spring = sign * capacity / ks - slip;  // where it sticks, should it stop here
+  out.implied = sign * capacity;
   return out;
 }
 

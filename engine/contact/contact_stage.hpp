@@ -21,6 +21,12 @@ namespace rockdd {
 /// Open: no spring. Sliding: normal spring, friction force. Locked: normal and shear springs.
 enum class ContactState : std::uint8_t { open, sliding, locked };
 
+/// The springs a contact adds to K: kn g g^T when closed, shear_stiffness t t^T.
+struct ContactSprings {
+  bool normal = false;
+  double shear_stiffness = 0.0;  // N/m
+};
+
 /// One vertex-edge contact and what it remembers across iterations and steps.
 struct Contact {
   std::int32_t vertex = -1, a = -1, b = -1;  // nodes: vertex p, edge a->b
@@ -43,6 +49,8 @@ struct Contact {
   double gap_offset = 0.0, slip_offset = 0.0;
   double gap_start = 0.0;  // the gap at the start of the step
   double slide_slip = 0.0;  // step slip where friction_force was set (without inertia)
+  double slide_stiffness = 0.0;  // its sliding spring (N/m), softened while it slides freely
+  double last_excess = 0.0;      // its shear force past the capacity, last iteration (N)
 };
 
 /// Joint parameters that contacts use, derived from the scene.
@@ -91,13 +99,15 @@ class ContactStage {
   /// accumulates, other contacts forget theirs.
   void commit(std::span<const double> positions);
 
-  /// The states of all contacts, in order (to compare before and after an update).
-  std::vector<ContactState> states() const;
-  /// The springs that differ between `before` (from states()) and the current states, as
+  /// The springs of all contacts, in order (to compare before and after an update).
+  std::vector<ContactSprings> springs() const;
+  /// The springs that differ between `before` (from springs()) and the current ones, as
   /// columns sqrt(k) g over the equations `equation` (per dof, -1 when prescribed): a normal
-  /// spring kn g g^T is on unless open, a shear spring ks t t^T only when locked.
-  void spring_changes(std::span<const ContactState> before, std::span<const std::int32_t> equation,
-                      LowRankTerms& added, LowRankTerms& removed) const;
+  /// spring kn g g^T unless open, a shear spring k t t^T (ks locked, the contact's
+  /// sliding stiffness sliding).
+  void spring_changes(std::span<const ContactSprings> before,
+                      std::span<const std::int32_t> equation, LowRankTerms& added,
+                      LowRankTerms& removed) const;
 
   /// After fracture rebuilt the blocks: takes over the committed contacts of the stage
   /// before, where their vertex and edge still exist (node ids survive a split).
@@ -114,11 +124,11 @@ class ContactStage {
   /// tolerance far below what matters for the rest.
   void set_force_scale(double scale) { force_scale_ = scale; }
 
-  /// The shear stiffness a contact in `state` adds to K: ks locked, k_slide sliding.
-  double shear_stiffness(ContactState state) const {
-    return state == ContactState::locked    ? parameters_.shear_stiffness
-           : state == ContactState::sliding ? parameters_.sliding_stiffness
-                                            : 0.0;
+  /// The shear stiffness contact c adds to K: ks locked, its sliding spring sliding.
+  double shear_stiffness(const Contact& c) const {
+    return c.state == ContactState::locked    ? parameters_.shear_stiffness
+           : c.state == ContactState::sliding ? c.slide_stiffness
+                                              : 0.0;
   }
   std::size_t size() const { return contacts_.size(); }
 

@@ -27,6 +27,10 @@ struct TimeSpec {
   std::optional<double> max_step_displacement;  // m
   double dt_max = 0.0;                          // s; default = dt
   Integrator integrator = Integrator::dda;
+  // Optional end on softening: the run stops once the history column `softening_probe`
+  // ("<probe>.<field>") has fallen `stop_at_softening` (a fraction) below its peak magnitude.
+  std::optional<double> stop_at_softening;
+  std::string softening_probe;
 };
 
 /// [mesh]: where the triangles come from.

@@ -51,6 +51,7 @@ Scene parse_scene(std::string_view text, const fs::path& file,
   scene.boundaries = read_boundaries(root);
   scene.loads = read_loads(root);
   scene.probes = read_probes(root);
+  check_softening_probe(root, scene);
   scene.output = read_output(root);
   scene.defaults = std::move(defaults);
   return scene;

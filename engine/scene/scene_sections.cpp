@@ -164,8 +164,8 @@ TimeSpec read_time(TableReader& root, Analysis analysis) {
                          ", got nothing (only a \"static\" scene may leave it out)");
   }
   TableReader table = optional_table(root, "time");
-  table.allow_only(
-      {"dt", "end", "steps", "dt_min", "max_step_displacement", "dt_max", "integrator"});
+  table.allow_only({"dt", "end", "steps", "dt_min", "max_step_displacement", "dt_max",
+                    "integrator", "stop_at_softening", "softening_probe"});
   TimeSpec time;
   time.dt =
       is_static ? table.number_or("dt", 1.0, above(0)) : table.required_number("dt", above(0));
@@ -197,6 +197,13 @@ TimeSpec read_time(TableReader& root, Analysis analysis) {
   time.integrator = table.choice_or("integrator", {"dda", "newmark"}, "dda") == "newmark"
                         ? Integrator::newmark
                         : Integrator::dda;
+  time.stop_at_softening = table.number("stop_at_softening", between(0.0, false, 1.0, false));
+  if (auto probe = table.string("softening_probe")) time.softening_probe = *probe;
+  if (time.stop_at_softening && time.softening_probe.empty())
+    table.fail("stop_at_softening",
+               "expected time.softening_probe (a history column \"<probe>.<field>\") with it");
+  if (!time.stop_at_softening && !time.softening_probe.empty())
+    table.fail("softening_probe", "expected time.stop_at_softening (a fraction in (0, 1)) with it");
   return time;
 }
 
@@ -230,6 +237,23 @@ MeshSpec read_mesh(TableReader& root, const fs::path& scene_dir) {
     read_disk(*table, mesh);
   }
   return mesh;
+}
+
+void check_softening_probe(TableReader& root, const Scene& scene) {
+  if (!scene.time.stop_at_softening) return;
+  const std::string& column = scene.time.softening_probe;
+  for (const ProbeSpec& probe : scene.probes)
+    for (const std::string& field : probe.fields)
+      if (column == probe.name + "." + field) return;
+  std::string columns;
+  for (const ProbeSpec& probe : scene.probes)
+    for (const std::string& field : probe.fields)
+      if (probe.kind != ProbeSpec::Kind::line)
+        columns += (columns.empty() ? "" : ", ") + probe.name + "." + field;
+  optional_table(root, "time")
+      .fail("softening_probe", "expected a history column (" +
+                                   (columns.empty() ? std::string("the scene has none") : columns) +
+                                   "), got \"" + column + "\"");
 }
 
 OutputSpec read_output(TableReader& root) {

@@ -21,5 +21,7 @@ MeshSpec read_mesh(TableReader& root, const std::filesystem::path& scene_dir);
 
 /// [output] (optional): folder, frame interval and VTU fields.
 OutputSpec read_output(TableReader& root);
+/// time.softening_probe names a history column of the scene's probes.
+void check_softening_probe(TableReader& root, const Scene& scene);
 
 }  // namespace rockdd
