@@ -8,8 +8,9 @@
 // (2) BM_RebuildAfterDetachment: what Simulation::detach_fractured_elements rebuilds after it:
 //     the step's 11 node fields follow the split, boundary conditions and reference loads,
 //     element colouring, the contact stage (block boundary, contacts carried over from the
-//     stage before), the stiffness layout and CHOLMOD's symbolic analysis; `*_ms` counters
-//     give each part. Probes, fragment anchors and the static free-block check are left out.
+//     stage before), the fragment anchors (steps without inertia), the stiffness layout and
+//     CHOLMOD's symbolic analysis; `*_ms` counters give each part. Probes and the static
+//     free-block check are left out.
 // Both whole passes scale with the mesh, not with k: `per_damaged` (seconds per newly damaged
 // element) says what one more damaged element costs when it is detached on its own.
 #include <benchmark/benchmark.h>
@@ -28,6 +29,7 @@
 #include "engine/assembly/stiffness_layout.hpp"
 #include "engine/contact/contact_stage.hpp"
 #include "engine/damage/detachment.hpp"
+#include "engine/damage/fragment_anchors.hpp"
 #include "engine/loading/boundary_conditions.hpp"
 #include "engine/loading/external_loads.hpp"
 #include "engine/model/element_strength.hpp"
@@ -148,10 +150,10 @@ void BM_RebuildAfterDetachment(benchmark::State& state) {
   const Model& model = c.detached;
   const std::size_t old_dofs = c.damaged.X.size();
   CholmodSolver solver;  // the simulation's solver, analysed again for the new pattern
-  double part[6] = {};
+  double part[7] = {};
   for (auto _ : state) {
     std::vector<std::vector<double>> fields(kStepFields, std::vector<double>(old_dofs, 0.0));
-    Clock::time_point t[7];
+    Clock::time_point t[8];
     t[0] = Clock::now();
     for (auto& field : fields) follow_split_nodes(c.detachment.node_origin, field);
     t[1] = Clock::now();
@@ -163,22 +165,26 @@ void BM_RebuildAfterDetachment(benchmark::State& state) {
     ContactStage contact(c.scene, model);
     contact.carry_contacts_from(*c.before);
     t[4] = Clock::now();
+    const std::vector<AnchorSpring> anchors = anchor_fragments(model, 1.0, 1e-3);
+    t[5] = Clock::now();
     std::vector<std::int32_t> conn = model.conn;
     const std::vector<std::int32_t> triples = contact.triples();
     conn.insert(conn.end(), triples.begin(), triples.end());
+    for (const AnchorSpring& a : anchors)
+      if (a.partner >= 0) conn.insert(conn.end(), {a.node, a.partner, a.partner});
     const StiffnessLayout layout = build_stiffness_layout(conn, model.num_nodes(), bc.equation);
-    t[5] = Clock::now();
-    solver.analyze(layout.pattern);
     t[6] = Clock::now();
-    state.SetIterationTime(seconds_between(t[0], t[6]));
-    for (int p = 0; p < 6; ++p) part[p] += seconds_between(t[p], t[p + 1]);
+    solver.analyze(layout.pattern);
+    t[7] = Clock::now();
+    state.SetIterationTime(seconds_between(t[0], t[7]));
+    for (int p = 0; p < 7; ++p) part[p] += seconds_between(t[p], t[p + 1]);
     benchmark::DoNotOptimize(loads.data());
     benchmark::DoNotOptimize(coloring.element.data());
   }
   report(state, c);
-  const char* names[6] = {"fields_ms",  "bc_loads_ms", "coloring_ms",
-                          "contact_ms", "layout_ms",   "analyze_ms"};
-  for (int p = 0; p < 6; ++p)
+  const char* names[7] = {"fields_ms",  "bc_loads_ms", "coloring_ms", "contact_ms",
+                          "anchors_ms", "layout_ms",   "analyze_ms"};
+  for (int p = 0; p < 7; ++p)
     state.counters[names[p]] =
         benchmark::Counter(1e3 * part[p], benchmark::Counter::kAvgIterations);
 }

@@ -1,0 +1,60 @@
+// The paper's uniaxial compression run (data/uniaxial_compression.toml: 8,100 elements,
+// Weibull m = 1.5, platen at 0.02 mm/s) from the first step to 20 % post-peak softening
+// (time.stop_at_softening = 0.2), on 1 and 2 threads, one run per repetition. Counters: the
+// run's steps, damage iterations and open-close iterations, each per second of wall time; the
+// share of the wall time in each of the engine's timers (summary.json "timers"); the peak
+// stress (MPa) and where the run stopped. Outputs are not written (RunOptions::write_outputs).
+#include <benchmark/benchmark.h>
+
+#include <filesystem>
+
+#include "engine/rockdd.hpp"
+
+namespace rockdd {
+namespace {
+
+void BM_UniaxialCompressionTo20PercentSoftening(benchmark::State& state) {
+  const Scene scene = load_scene(
+      std::filesystem::path(ROCKDD_SOURCE_DIR) / "data/uniaxial_compression.toml",
+      {"time.stop_at_softening=0.2"});
+  const Model model = build_scene_model(scene);  // meshing and draws are not timed
+  nlohmann::json summary;
+  for (auto _ : state) {
+    Simulation sim(scene, model);
+    RunOptions options;
+    options.threads = static_cast<int>(state.range(0));
+    options.write_outputs = false;
+    const RunResult result = sim.run(options);
+    if (!result.ok) {
+      state.SkipWithError(result.reason.c_str());
+      return;
+    }
+    summary = result.summary;
+  }
+  const double wall = summary.at("wall_seconds").get<double>();
+  auto count = [&](const char* key) { return summary.at(key).get<double>(); };
+  state.counters["steps"] = count("steps");
+  state.counters["steps_per_s"] = count("steps") / wall;
+  state.counters["damage_it_per_s"] = count("damage_iterations") / wall;
+  state.counters["open_close_per_s"] = count("open_close_iterations") / wall;
+  for (const char* timer : {"assembly", "factorization", "solve", "contact", "damage"})
+    state.counters[std::string("share_") + timer] =
+        summary.at("timers").at(timer).get<double>() / wall;
+  state.counters["peak_MPa"] = summary.at("softening").at("peak").get<double>() / 0.075 / 1e6;
+  state.counters["stop_time_s"] = summary.at("softening").at("time").get<double>();
+  state.counters["blocks"] = count("blocks");
+}
+
+BENCHMARK(BM_UniaxialCompressionTo20PercentSoftening)
+    ->ArgName("threads")
+    ->Arg(1)
+    ->Arg(2)
+    ->Iterations(1)
+    ->Repetitions(3)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
+
+}  // namespace
+}  // namespace rockdd
+
+BENCHMARK_MAIN();
