@@ -10,6 +10,7 @@
 
 #include "engine/errors.hpp"
 #include "engine/model/model.hpp"
+#include "engine/monte_carlo/monte_carlo.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/simulation.hpp"
 

@@ -67,6 +67,11 @@ const char* analysis_name(Analysis a) {
 
 }  // namespace
 
+std::filesystem::path run_folder(const Scene& scene, const RunOptions& options) {
+  if (!options.out_dir.empty()) return options.out_dir;
+  return (options.out_root.empty() ? scene.output.dir : options.out_root) / scene.name;
+}
+
 Simulation::Simulation(Scene scene, Model model)
     : scene_(std::move(scene)), model_(std::move(model)) {
   // Blocks that move turn: their strain is measured in co-rotated frames. A static analysis
@@ -538,9 +543,8 @@ RunResult Simulation::run(const RunOptions& options) {
   StepControl control(scene_.time);
   std::unique_ptr<RunOutputs> outputs;
   if (options.write_outputs)
-    outputs = std::make_unique<RunOutputs>(
-        scene_, options.out_root.empty() ? scene_.output.dir : options.out_root, probes_->columns(),
-        probes_->has_line_probes());
+    outputs = std::make_unique<RunOutputs>(scene_, run_folder(scene_, options), probes_->columns(),
+                                           probes_->has_line_probes());
 
   // Step 0: the initial state.
   const double initial_factor = load_factor(scene_.analysis, 0.0, end_time);

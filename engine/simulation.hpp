@@ -41,10 +41,14 @@ struct StepReport {
 /// How to run: where outputs go, threads, and a per-step callback.
 struct RunOptions {
   std::filesystem::path out_root;  // empty: the scene's output.dir
+  std::filesystem::path out_dir;   // the run folder itself; empty: <out_root>/<scene name>
   int threads = 0;                 // 0: every hardware thread
   bool write_outputs = true;
   std::function<void(const StepReport&, const Model&)> on_step;
 };
+
+/// Where a run of `scene` with `options` writes its files.
+std::filesystem::path run_folder(const Scene& scene, const RunOptions& options);
 
 /// Outcome of a run: "ok", or "failed" with the reason; the summary.json content.
 struct RunResult {

@@ -11,9 +11,9 @@
 
 namespace rockdd {
 
-RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& root,
+RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
                        const std::vector<std::string>& probe_columns, bool line_probes)
-    : dir_(root / scene.name), fields_(scene.output.fields), columns_(probe_columns) {
+    : dir_(dir), fields_(scene.output.fields), columns_(probe_columns) {
   // Frames and profiles of an earlier run in the same folder would mix with this run's (a
   // longer earlier run leaves frames past this one's end): they are removed first.
   for (const char* folder : {"frames", "profiles"}) {

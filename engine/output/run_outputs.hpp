@@ -1,6 +1,6 @@
 #pragma once
-// The files of one run in <out>/<scene name>/: history.csv, frames/ with frames.pvd,
-// profiles/, summary.json. Every file appears complete or not at all.
+// The files of one run in its folder (<out>/<scene name>/ by default): history.csv, frames/
+// with frames.pvd, profiles/, summary.json. Every file appears complete or not at all.
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -25,8 +25,8 @@ struct EnergyBalance {
 /// without finishing leaves no history that could pass for a complete one.
 class RunOutputs {
  public:
-  /// Creates the run folder (and frames/, profiles/ when needed) and starts history.csv.
-  RunOutputs(const Scene& scene, const std::filesystem::path& root,
+  /// Creates the run folder `dir` (and frames/, profiles/ when needed) and starts history.csv.
+  RunOutputs(const Scene& scene, const std::filesystem::path& dir,
              const std::vector<std::string>& probe_columns, bool line_probes);
   ~RunOutputs();
   RunOutputs(const RunOutputs&) = delete;
@@ -39,7 +39,7 @@ class RunOutputs {
   void frame(const Model& model, long step, double time);
   /// Largest magnitude seen of each probe column.
   const std::map<std::string, double>& peaks() const { return peaks_; }
-  /// Run folder, <root>/<scene name>.
+  /// Run folder.
   const std::filesystem::path& dir() const { return dir_; }
   /// Commits history.csv and writes summary.json.
   void finish(const nlohmann::json& summary);
