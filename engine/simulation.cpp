@@ -10,6 +10,7 @@
 #include <optional>
 
 #include "engine/assembly/assemble_stiffness.hpp"
+#include "engine/assembly/element_state.hpp"
 #include "engine/assembly/internal_force.hpp"
 #include "engine/contact/contact_stage.hpp"
 #include "engine/damage/damage_stage.hpp"
@@ -19,6 +20,7 @@
 #include "engine/loading/external_loads.hpp"
 #include "engine/output/probes.hpp"
 #include "engine/time/rotation_correction.hpp"
+#include "kernels/damage_law.hpp"
 
 namespace rockdd {
 namespace {
@@ -503,6 +505,20 @@ nlohmann::json Simulation::Softening::summary(const TimeSpec& spec) const {
           {"value", value}};
 }
 
+double Simulation::released_by_damage() const {
+  // Serially in element order: the total must not depend on the thread count.
+  const kernels::PlaneKind plane = plane_kind(model_.plane);
+  double energy = 0.0;
+  for (std::int32_t e = 0; e < model_.num_elements(); ++e)
+    if (model_.damage[e] > committed_damage_[e])
+      energy += kernels::damage_dissipation(&model_.strain[3 * static_cast<std::size_t>(e)],
+                                            model_.young[e], model_.poisson[e], plane,
+                                            committed_damage_[e], model_.damage[e],
+                                            kDamagedStiffnessFloor) *
+                model_.area0[e];
+  return energy * model_.thickness;
+}
+
 double Simulation::element_force_scale() const {
   // The largest force an element edge carries, about |sigma| sqrt(2 A) t, and the largest
   // load or reaction on a node.
@@ -522,8 +538,10 @@ EnergyBalance Simulation::energy() const {
   for (std::int32_t n = 0; n < model_.num_nodes(); ++n)
     e.kinetic += 0.5 * model_.node_mass[n] *
                  (model_.v[2 * n] * model_.v[2 * n] + model_.v[2 * n + 1] * model_.v[2 * n + 1]);
-  e.strain = strain_energy(model_, model_.strain, model_.stress);
+  e.strain = strain_energy(model_, model_.strain, model_.stress) +
+             (contact_ ? contact_->spring_energy() : 0.0);
   e.external_work = external_work_;
+  e.dissipated = damage_dissipation_ + (contact_ ? contact_->friction_dissipation() : 0.0);
   return e;
 }
 
@@ -604,6 +622,7 @@ RunResult Simulation::run(const RunOptions& options) {
       }
       commit_step(dt);
       if (damage_) {
+        damage_dissipation_ += released_by_damage();
         committed_damage_ = model_.damage;
         if (!first_damage_) first_damage_ = attempt_first_damage_;
       }

@@ -101,6 +101,9 @@ class Simulation {
   void add_anchor_stiffness(std::span<double> target) const;
   /// The anchors' forces for a step increment du (2 per node).
   void anchor_forces(std::span<const double> du, std::vector<double>& force) const;
+  /// Elastic energy the step's damage released (J): damage grown since the last commit, at
+  /// the step's strain (kernels::damage_dissipation).
+  double released_by_damage() const;
   /// Force scale of the committed state (N): the largest element edge force, load or reaction.
   double element_force_scale() const;
   EnergyBalance energy() const;
@@ -148,6 +151,7 @@ class Simulation {
   std::vector<double> acceleration_, f_int_, f_ext_, f_ext_old_, reaction_, reaction_old_;
   std::vector<double> u_trial_, du_, rhs_;  // rhs_ is per equation
   double external_work_ = 0.0;
+  double damage_dissipation_ = 0.0;  // J, cumulative
 
   /// The peak of the watched history column and whether it has softened past the scene's
   /// fraction (time.stop_at_softening).

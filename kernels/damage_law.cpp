@@ -80,6 +80,17 @@ double effective_modulus(double young, double w, double floor) {
   return std::max((1.0 - w) * young, floor * young);
 }
 
+double damage_dissipation(const double eps[3], double young, double poisson, PlaneKind plane,
+                          double w_old, double w_new, double floor) {
+  double d[9];
+  elasticity_matrix(1.0, poisson, plane, d);  // per unit modulus
+  double energy = 0.0;
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) energy += eps[i] * d[3 * i + j] * eps[j];
+  return 0.5 * energy *
+         (effective_modulus(young, w_old, floor) - effective_modulus(young, w_new, floor));
+}
+
 DamageUpdate evaluate_damage(const double eps[3], const double sig[3], const DamageParams& p,
                              PlaneKind plane, double w_old) {
   if (w_old >= 1.0) return {w_old, DamageLaw::none};  // nothing left to lose

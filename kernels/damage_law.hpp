@@ -88,6 +88,13 @@ double compressive_damage(double eps_c1, double eps_c0, double lambda);
 /// Damaged modulus with the floor: max((1 - w) E0, floor E0).
 double effective_modulus(double young, double w, double floor = kDefaultStiffnessFloor);
 
+/// Energy released per unit volume (J/m^3) as damage grows from w_old to w_new at strain eps:
+/// the fall of the elastic energy 1/2 eps.D eps when the modulus drops from E(w_old) to
+/// E(w_new) at fixed strain. A secant damage law unloads to the origin, so this energy does
+/// not come back: it is dissipated.
+double damage_dissipation(const double eps[3], double young, double poisson, PlaneKind plane,
+                          double w_old, double w_new, double floor = kDefaultStiffnessFloor);
+
 /// New damage of an element: max(w_old, w_law), w_law from the first criterion that holds
 /// (tension, then Mohr-Coulomb). sig is the element's stress under its current (damaged)
 /// modulus; the criteria use the effective stress sig / max(1 - w_old, floor), so a softening

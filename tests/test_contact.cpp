@@ -150,6 +150,16 @@ TEST(Friction, BrakesABlockSlidingOnAFlatBase) {
   EXPECT_NEAR(run.history.at("block.ux").back(), v0 * v0 / (2 * mu * g),
               0.02 * v0 * v0 / (2 * mu * g));
   EXPECT_LT(std::abs(vx.back()), 1e-3);  // and stays stopped
+  // Friction dissipated the block's kinetic energy, 1/2 m v0^2 = 2600 J (m = 1300 kg per
+  // metre of thickness): energy.dissipated within 2 % (measured 2594.6 J, -0.2 %), and
+  // kinetic + strain + dissipated = initial kinetic + external work within 1 % (measured
+  // -0.2 %: DDA's own damping).
+  const auto& dissipated = run.history.at("energy.dissipated");
+  const double kinetic0 = 0.5 * 1300.0 * v0 * v0;
+  EXPECT_NEAR(dissipated.back(), kinetic0, 0.02 * kinetic0);
+  EXPECT_NEAR(run.history.at("energy.kinetic").back() + run.history.at("energy.strain").back() +
+                  dissipated.back(),
+              kinetic0 + run.history.at("energy.external_work").back(), 0.01 * kinetic0);
 
   const auto free = test::run_scene_text(kBlockOnBaseScene, {"joint.0.friction_angle=0"}, 0,
                                          {{"block_on_base.geo", block_on_base_geo()}});

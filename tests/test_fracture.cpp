@@ -124,6 +124,51 @@ TEST(Damage, FirstElementDamagesWhenTheStressReachesTheWeakestStrength) {
   EXPECT_GE(at.result.summary["blocks"].get<long>(), 2);
 }
 
+TEST(Damage, DissipatesWhatTheSecantLawCannotReturn) {
+  // Homogeneous bar in uniaxial tension, 4.7e-6 strain a step, elements kept attached
+  // (detach_at_damage = 0.99: eq. 3 stays below 1 - lambda / eta = 0.98 until eps_tu =
+  // 5e-4). Every element passes the onset in the same step (eps_1 = 22 x 4.7e-6, 3 % past
+  // eps_t0 = 1e-4: smaller steps let round-off pick one element, which localizes). Eq. (3)
+  // unloads to the origin, so growing w from w' to w at strain eps releases
+  // 1/2 (w - w') E0 eps^2 per unit volume for good:
+  // - energy.dissipated = V sum_k 1/2 E0 eps_k^2 (w_k - w_{k-1}), w_k = 1 - lambda eps_t0 /
+  //   eps_k, to 1e-9;
+  // - and the integral from the onset, V [1/2 E0 eps_1^2 w_1 + 1/2 lambda E0 eps_t0 (eps -
+  //   eps_1)] (the plateau sigma = lambda ft0 dissipates lambda ft0 / 2 per unit strain),
+  //   within 0.5 %;
+  // - the balance external work = strain + dissipated, to the error of the trapezoidal rule
+  //   that integrates the work: across the onset's force drop 1/2 (E0 eps_1 - lambda ft0)
+  //   4.7e-6 V, plus the elastic rise before each step's damage update on the plateau (6 % of
+  //   that): within 1.1 x the first.
+  const double young = 20e9, ft0 = 2e6, eps_t0 = ft0 / young, lambda = 0.1, rate = 4.7e-6;
+  const int steps = 40;
+  const auto run = test::run_scene_text(
+      bar_in_tension("detach_at_damage = 0.99\n"),
+      {"boundary.2.velocity_x=4.7e-7", "time.end=" + std::to_string(steps) + ".0"});
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  EXPECT_EQ(run.result.summary["detached_elements"].get<long>(), 0);
+  const double volume = 0.1 * 0.05;
+  double expected = 0.0, w_previous = 0.0, eps_1 = 0.0;
+  for (int k = 1; k <= steps; ++k) {
+    const double eps = rate * k;
+    if (eps * young < ft0) continue;
+    if (eps_1 == 0.0) eps_1 = eps;
+    const double w = 1.0 - lambda * eps_t0 / eps;
+    expected += 0.5 * (w - w_previous) * young * eps * eps * volume;
+    w_previous = w;
+  }
+  const auto& dissipated = run.history.at("energy.dissipated");
+  EXPECT_NEAR(dissipated.back(), expected, 1e-9 * expected);
+  const double eps = steps * rate;
+  const double integral =
+      volume * (0.5 * young * eps_1 * eps_1 * (1.0 - lambda * eps_t0 / eps_1) +
+                0.5 * lambda * young * eps_t0 * (eps - eps_1));
+  EXPECT_NEAR(dissipated.back(), integral, 0.005 * integral);
+  const double stored = run.history.at("energy.strain").back();
+  EXPECT_NEAR(run.history.at("energy.external_work").back(), stored + dissipated.back(),
+              1.1 * 0.5 * (young * eps_1 - lambda * ft0) * rate * volume);
+}
+
 TEST(Fracture, SameSeedSameHistoryWhateverTheThreads) {
   // The bar cracks through (Weibull ft, m = 10, seed 7: damage from t = 11 s, the load
   // drops from 70 kN to a few kN by t = 13 s): damage, detachment, regrouping and the

@@ -218,6 +218,8 @@ void ContactStage::carry_contacts_from(const ContactStage& old) {
   });
   contacts_ = committed_;
   shear_swings_settled_ = old.shear_swings_settled_;
+  friction_dissipation_ = old.friction_dissipation_;
+  spring_energy_ = old.spring_energy_;
   normal_swings_settled_ = old.normal_swings_settled_;
 }
 
@@ -276,6 +278,7 @@ bool ContactStage::detect(std::span<const double> positions) {
                                                : ContactState::sliding;
     }
     c.slide_stiffness = parameters_.sliding_stiffness;
+    c.anchor_start = c.shear_spring;
     linearise(c, positions);
     c.start_normal_force = c.state != ContactState::open && c.gap_start < 0.0
                                ? -parameters_.normal_stiffness * c.gap_start
@@ -391,6 +394,7 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       // and a block whose contacts chatter would lose that much friction at every touch.
       const double touched = c.gap_start > 0.0 ? c.gap_start / (c.gap_start - gap) : 0.0;
       c.shear_spring = -std::clamp(touched, 0.0, 1.0) * slip;
+      c.anchor_start = c.shear_spring;
     }
     const ShearUpdate shear = parameters_.sliding_stiffness > 0.0
                                   ? update_shear_without_inertia(c, gap, slip, tolerance)
@@ -523,9 +527,25 @@ ContactStage::ShearUpdate ContactStage::update_shear_without_inertia(Contact& c,
 }
 
 void ContactStage::commit(std::span<const double> positions) {
-  // The anchor is kept in the next step's slip coordinate, which starts from 0.
+  const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
+  spring_energy_ = 0.0;
   for (Contact& c : contacts_) {
-    c.shear_spring = c.state == ContactState::open ? 0.0 : c.shear_spring + step_slip(c, positions);
+    if (c.state == ContactState::open) {
+      c.shear_spring = 0.0;
+      continue;
+    }
+    // Energy: the springs' elastic energy, and friction's work over the slip the anchor
+    // followed in this step (plastic slip, from where it stood at the step start or closing).
+    const double slip = step_slip(c, positions);
+    const double normal = kn * linear_gap(c, positions);
+    const double shear = c.state == ContactState::locked
+                             ? ks * (c.shear_spring + slip)
+                             : -c.friction_force + c.slide_stiffness * (slip - c.slide_slip);
+    spring_energy_ += 0.5 * (normal * normal / kn + shear * shear / ks);
+    friction_dissipation_ += std::abs(shear) * std::abs(c.anchor_start - c.shear_spring);
+    // The anchor is kept in the next step's slip coordinate, which starts from 0.
+    c.shear_spring += slip;
+    c.anchor_start = c.shear_spring;
   }
   started_ = true;
   committed_ = contacts_;

@@ -51,6 +51,7 @@ struct Contact {
   double slide_slip = 0.0;  // step slip where friction_force was set (without inertia)
   double slide_stiffness = 0.0;  // its sliding spring (N/m), softened while it slides freely
   double last_excess = 0.0;      // its shear force past the capacity, last iteration (N)
+  double anchor_start = 0.0;     // shear_spring at the step start or when it closed (m)
 };
 
 /// Joint parameters that contacts use, derived from the scene.
@@ -113,6 +114,12 @@ class ContactStage {
   /// before, where their vertex and edge still exist (node ids survive a split).
   void carry_contacts_from(const ContactStage& old);
 
+  /// Work of friction since the start (J per the thickness): the shear force times the slip
+  /// that the anchors followed, summed over committed steps.
+  double friction_dissipation() const { return friction_dissipation_; }
+  /// Elastic energy of the closed contacts' springs at the last commit (J).
+  double spring_energy() const { return spring_energy_; }
+
   /// Contacts whose shear force kept swinging and settled on their last answer (cumulative).
   long shear_swings_settled() const { return shear_swings_settled_; }
   /// Contacts that kept opening and closing and were left open (cumulative).
@@ -159,6 +166,7 @@ class ContactStage {
   std::vector<double> vertex_area_;  // per boundary vertex, see Contact::area
   long shear_swings_settled_ = 0, normal_swings_settled_ = 0;
   double force_scale_ = 0.0;
+  double friction_dissipation_ = 0.0, spring_energy_ = 0.0;
 
   bool started_ = false;  // a step has been committed: contacts that form now are not bonded
 };
