@@ -380,4 +380,22 @@ TEST(DamageLaw, EffectiveModulusHasAFloor) {
   EXPECT_DOUBLE_EQ(k::effective_modulus(kE0, 0.9999999), 1e-6 * kE0);
 }
 
+TEST(DamageLaw, DissipationIsTheElasticEnergyTheModulusDropReleases) {
+  // At fixed strain, 1/2 (E(w_old) - E(w_new)) eps.D1 eps with D1 the unit-modulus matrix.
+  // Uniaxial stress in plane stress, eps = {e, -nu e, 0}: eps.D1 eps = e^2, so the release is
+  // 1/2 (w_new - w_old) E0 e^2 to round-off; down to the floor it stops at 1 - 1e-6 of E0.
+  const double e = 1.5e-4;
+  const double eps[3] = {e, -kNu * e, 0.0};
+  expect_rel(k::damage_dissipation(eps, kE0, kNu, PlaneKind::stress, 0.0, 0.9),
+             0.5 * 0.9 * kE0 * e * e, 1e-13);
+  expect_rel(k::damage_dissipation(eps, kE0, kNu, PlaneKind::stress, 0.5, 1.0),
+             0.5 * (0.5 - 1e-6) * kE0 * e * e, 1e-13);
+  EXPECT_EQ(k::damage_dissipation(eps, kE0, kNu, PlaneKind::stress, 0.3, 0.3), 0.0);
+  // Pure shear gamma in plane strain: eps.D1 eps = gamma^2 / (2 (1 + nu)) (G = E / 2(1+nu)).
+  const double gamma = 2e-4;
+  const double shear[3] = {0.0, 0.0, gamma};
+  expect_rel(k::damage_dissipation(shear, kE0, kNu, PlaneKind::strain, 0.0, 0.5),
+             0.5 * 0.5 * kE0 * gamma * gamma / (2.0 * (1.0 + kNu)), 1e-13);
+}
+
 }  // namespace
