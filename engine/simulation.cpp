@@ -202,6 +202,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
   const std::size_t num_dofs = model_.X.size();
   if (damage_) {
     attempt_first_damage_.reset();
+    attempt_damage_dissipation_ = 0.0;
     if (retries > 0 && model_.damage != committed_damage_) {
       model_.damage = committed_damage_;
       factorized_mass_coefficient_ = -1.0;  // the moduli changed back
@@ -283,8 +284,12 @@ DamageChange Simulation::evaluate_damage() {
   for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.u[d] + du_[d];
   compute_internal_force(model_, coloring_, positions_, model_.strain, model_.stress, damage_force_,
                          corotational_);
+  damage_before_ = model_.damage;
   const DamageChange change = damage_->evaluate(model_);
-  if (change.grown > 0) factorized_mass_coefficient_ = -1.0;  // the moduli changed
+  if (change.grown > 0) {
+    factorized_mass_coefficient_ = -1.0;  // the moduli changed
+    attempt_damage_dissipation_ += released_by_damage(damage_before_);
+  }
   if (change.newly_damaged > 0 && !first_damage_ && !attempt_first_damage_) {
     FirstDamage first{steps_ + 1, attempt_time_, 0, 0.0, 0.0, 0.0};
     std::vector<std::array<double, 2>> centroids;
@@ -327,8 +332,8 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
       const double scale = past > 0 ? std::ldexp(1.0, past) : 1.0;
       // Last resort, in the closing iterations of a step already redone kRetriesBeforeSettling
       // times: contacts that keep swinging between two answers settle on their last one.
-      const bool settle = retries >= kRetriesBeforeSettling &&
-                          iterations > limit - kSettlingIterations;
+      const bool settle =
+          retries >= kRetriesBeforeSettling && iterations > limit - kSettlingIterations;
       changes = contact_->update_states(positions_, scale, settle, penetration);
       if (changes == 0 && scale > 1.0) {
         ++relaxed_steps_;
@@ -356,8 +361,8 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
     }
     if (iterations >= limit) {
       open_close_iterations_ += iterations;
-      control.reject(step, "the open-close iteration did not settle in " +
-                               std::to_string(limit) + " iterations");
+      control.reject(step, "the open-close iteration did not settle in " + std::to_string(limit) +
+                               " iterations");
       return false;
     }
   }
@@ -390,6 +395,9 @@ void Simulation::commit_step(double dt) {
     contact_->commit(positions_);
   }
   anchor_forces(du_, anchor_force_);
+  // The anchors restart from zero force next step: the energy they hold now leaves the
+  // balance, a loss of the method (not of the rock) that summary.json reports.
+  for (std::size_t d = 0; d < num_dofs; ++d) anchor_energy_ += 0.5 * anchor_force_[d] * du_[d];
   // The constraints' force on the body, and the work of all external forces (trapezoidal).
   double work = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) {
@@ -473,14 +481,11 @@ void Simulation::anchor_forces(std::span<const double> du, std::vector<double>& 
   for (const AnchorSpring& a : anchors_)
     for (int c = 0; c < 2; ++c) {
       const std::size_t n = 2 * static_cast<std::size_t>(a.node) + c;
-      if (a.partner < 0) {
-        force[n] += a.stiffness * du[n];
-        continue;
-      }
-      const std::size_t p = 2 * static_cast<std::size_t>(a.partner) + c;
-      const double f = a.stiffness * (du[n] - du[p]);
+      const std::size_t p = a.partner >= 0 ? 2 * static_cast<std::size_t>(a.partner) + c : n;
+      const double relative = a.partner >= 0 ? du[n] - du[p] : du[n];
+      const double f = a.stiffness * relative;
       force[n] += f;
-      force[p] -= f;
+      if (a.partner >= 0) force[p] -= f;
     }
 }
 
@@ -498,24 +503,30 @@ bool Simulation::Softening::observe(long at_step, double at_time, double v, doub
 }
 
 nlohmann::json Simulation::Softening::summary(const TimeSpec& spec) const {
-  return {{"probe", spec.softening_probe}, {"fraction", *spec.stop_at_softening},
-          {"peak", peak},                  {"peak_step", peak_step},
-          {"peak_time", peak_time},        {"reached", reached},
-          {"step", step},                  {"time", time},
+  return {{"probe", spec.softening_probe},
+          {"fraction", *spec.stop_at_softening},
+          {"peak", peak},
+          {"peak_step", peak_step},
+          {"peak_time", peak_time},
+          {"reached", reached},
+          {"step", step},
+          {"time", time},
           {"value", value}};
 }
 
-double Simulation::released_by_damage() const {
-  // Serially in element order: the total must not depend on the thread count.
+double Simulation::released_by_damage(std::span<const double> damage_before) const {
+  // At the strain of the pass that grew the damage: the modulus drops at that strain, and the
+  // deformation the softer element takes on afterwards is stored at the new modulus (counted
+  // in the strain energy). Serially in element order: the total must not depend on threads.
   const kernels::PlaneKind plane = plane_kind(model_.plane);
   double energy = 0.0;
   for (std::int32_t e = 0; e < model_.num_elements(); ++e)
-    if (model_.damage[e] > committed_damage_[e])
-      energy += kernels::damage_dissipation(&model_.strain[3 * static_cast<std::size_t>(e)],
-                                            model_.young[e], model_.poisson[e], plane,
-                                            committed_damage_[e], model_.damage[e],
-                                            kDamagedStiffnessFloor) *
-                model_.area0[e];
+    if (model_.damage[e] > damage_before[e])
+      energy +=
+          kernels::damage_dissipation(&model_.strain[3 * static_cast<std::size_t>(e)],
+                                      model_.young[e], model_.poisson[e], plane, damage_before[e],
+                                      model_.damage[e], kDamagedStiffnessFloor) *
+          model_.area0[e];
   return energy * model_.thickness;
 }
 
@@ -581,17 +592,16 @@ RunResult Simulation::run(const RunOptions& options) {
   const bool watch_softening = scene_.time.stop_at_softening.has_value();
   const auto& columns = probes_->columns();
   const std::size_t softening_column =
-      watch_softening
-          ? static_cast<std::size_t>(std::find(columns.begin(), columns.end(),
-                                               scene_.time.softening_probe) -
-                                     columns.begin())
-          : 0;
+      watch_softening ? static_cast<std::size_t>(
+                            std::find(columns.begin(), columns.end(), scene_.time.softening_probe) -
+                            columns.begin())
+                      : 0;
   auto record = [&](long step, double time, double dt, bool last) {
     if (!outputs && !watch_softening) return last;
     ScopedTimer timer(timers_.output);
     evaluate_probes(row);
-    if (watch_softening && softening_.observe(step, time, row[softening_column],
-                                              *scene_.time.stop_at_softening))
+    if (watch_softening &&
+        softening_.observe(step, time, row[softening_column], *scene_.time.stop_at_softening))
       last = true;
     if (!outputs) return last;
     outputs->history_row(step, time, dt, row, energy());
@@ -622,7 +632,7 @@ RunResult Simulation::run(const RunOptions& options) {
       }
       commit_step(dt);
       if (damage_) {
-        damage_dissipation_ += released_by_damage();
+        damage_dissipation_ += attempt_damage_dissipation_;
         committed_damage_ = model_.damage;
         if (!first_damage_) first_damage_ = attempt_first_damage_;
       }
@@ -708,6 +718,20 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
                            {"spread", first_damage_->spread}};
     else
       s["first_damage"] = nullptr;
+  }
+  {
+    // The balance of the last committed state, split by where the work went; what is left
+    // over measures the scheme's own losses (contact reset, step relinearisation).
+    const EnergyBalance e = energy();
+    const double friction = contact_ ? contact_->friction_dissipation() : 0.0;
+    s["energy"] = {
+        {"external_work", e.external_work},
+        {"kinetic", e.kinetic},
+        {"strain", e.strain},
+        {"damage_dissipation", damage_dissipation_},
+        {"friction_dissipation", friction},
+        {"anchor_work", anchor_energy_},
+        {"unaccounted", e.external_work - e.kinetic - e.strain - e.dissipated - anchor_energy_}};
   }
   s["damaged_elements"] =
       std::count_if(model_.damage.begin(), model_.damage.end(), [](double w) { return w > 0; });

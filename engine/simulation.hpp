@@ -101,9 +101,9 @@ class Simulation {
   void add_anchor_stiffness(std::span<double> target) const;
   /// The anchors' forces for a step increment du (2 per node).
   void anchor_forces(std::span<const double> du, std::vector<double>& force) const;
-  /// Elastic energy the step's damage released (J): damage grown since the last commit, at
-  /// the step's strain (kernels::damage_dissipation).
-  double released_by_damage() const;
+  /// Elastic energy a damage pass released (J): the damage grown since `damage_before`, at the
+  /// pass's strain (kernels::damage_dissipation).
+  double released_by_damage(std::span<const double> damage_before) const;
   /// Force scale of the committed state (N): the largest element edge force, load or reaction.
   double element_force_scale() const;
   EnergyBalance energy() const;
@@ -142,16 +142,19 @@ class Simulation {
     double spread = 0.0;      // largest distance of their centroids from that mean
   };
   std::optional<FirstDamage> first_damage_, attempt_first_damage_;
-  double attempt_time_ = 0.0;            // time at the end of the step being attempted
-  std::vector<AnchorSpring> anchors_;  // fragments tied in steps without inertia
-  std::int32_t first_anchor_slot_ = 0; // layout slot of the first two-node anchor
-  std::vector<double> anchor_force_;   // the anchors' force at the step's trial increment
+  double attempt_time_ = 0.0;           // time at the end of the step being attempted
+  std::vector<AnchorSpring> anchors_;   // fragments tied in steps without inertia
+  std::int32_t first_anchor_slot_ = 0;  // layout slot of the first two-node anchor
+  std::vector<double> anchor_force_;    // the anchors' force at the step's trial increment
 
   // Step state (2 per node unless noted).
   std::vector<double> acceleration_, f_int_, f_ext_, f_ext_old_, reaction_, reaction_old_;
   std::vector<double> u_trial_, du_, rhs_;  // rhs_ is per equation
   double external_work_ = 0.0;
-  double damage_dissipation_ = 0.0;  // J, cumulative
+  double damage_dissipation_ = 0.0;          // J, committed steps
+  double attempt_damage_dissipation_ = 0.0;  // J, the step being attempted
+  double anchor_energy_ = 0.0;               // J, held by fragment anchors when their steps ended
+  std::vector<double> damage_before_;        // per element, before a damage pass
 
   /// The peak of the watched history column and whether it has softened past the scene's
   /// fraction (time.stop_at_softening).

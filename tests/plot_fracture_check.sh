@@ -26,6 +26,8 @@ draws() {
 }
 draws last.png fracture "$run"
 draws block.png fracture "$run" --color block --magnify 100
+draws s1.png fracture "$run" --color s1
+draws s3.png fracture "$run" --color s3 --step 0
 draws first.png fracture "$run" --step 0
 draws time.png fracture "$run" --time 1e9
 draws curve.png curve "$run" --x time --y "$col" --y-scale -1e-3 --mark-peak

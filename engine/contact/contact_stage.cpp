@@ -136,8 +136,10 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   // Without inertia nothing but its own contacts holds a block tangentially, and friction as a
   // bare load would throw one that is held on one side only: a sliding contact keeps a
   // spring of a small fraction of ks (ContactParameters::sliding_stiffness).
-  if (scene.analysis != Analysis::dynamic)
+  if (scene.analysis != Analysis::dynamic) {
     parameters_.sliding_stiffness = kSlidingStiffnessFraction * parameters_.shear_stiffness;
+    parameters_.forgive_unresisted_overlap = true;
+  }
   // Candidates within half the median boundary edge: near enough to close within a step.
   std::vector<double> lengths;
   for (std::size_t i = 0; i + 1 < boundary_.edge_nodes.size(); i += 2) {
@@ -280,6 +282,21 @@ bool ContactStage::detect(std::span<const double> positions) {
     c.slide_stiffness = parameters_.sliding_stiffness;
     c.anchor_start = c.shear_spring;
     linearise(c, positions);
+    // The step starts from the force the contact ended the last step with. Between two steps
+    // the gap is measured anew, exactly, where the last solve used its linearisation; and a
+    // vertex may be found already overlapping, having slid unseen off a split corner or onto
+    // another edge. The overlap that no solve resisted carries no force: taken as the
+    // contact's zero; as the faces part, the next step's end_gap shows less of it, so it heals.
+    // Otherwise that overlap would push the faces apart with a force that nothing did work for
+    // (penalty springs are 20 E t: a micrometre is meganewtons).
+    const double resisted = before != nullptr && before->state != ContactState::open
+                                ? std::min(before->end_gap, 0.0)
+                                : 0.0;
+    c.overlap = c.state == ContactState::open || !parameters_.forgive_unresisted_overlap
+                    ? 0.0
+                    : std::max(resisted - c.gap_start, 0.0);
+    c.gap_offset += c.overlap;
+    c.gap_start += c.overlap;
     c.start_normal_force = c.state != ContactState::open && c.gap_start < 0.0
                                ? -parameters_.normal_stiffness * c.gap_start
                                : -1.0;
@@ -458,8 +475,7 @@ ContactStage::ShearUpdate ContactStage::update_shear_with_inertia(Contact& c, do
   // that the spring carries exactly the capacity (sliding, with no shear stiffness and the
   // friction as a load in the next solve).
   const double elastic = c.shear_spring + slip;
-  const double capacity =
-      shear_capacity(c, normal_force, ks * elastic, tolerance, out.bond_broke);
+  const double capacity = shear_capacity(c, normal_force, ks * elastic, tolerance, out.bond_broke);
   if (capacity > 0.0 && ks * std::abs(elastic) <= capacity) {
     c.state = ContactState::locked;
     out.implied = ks * elastic;
@@ -546,6 +562,7 @@ void ContactStage::commit(std::span<const double> positions) {
     // The anchor is kept in the next step's slip coordinate, which starts from 0.
     c.shear_spring += slip;
     c.anchor_start = c.shear_spring;
+    c.end_gap = linear_gap(c, positions);
   }
   started_ = true;
   committed_ = contacts_;

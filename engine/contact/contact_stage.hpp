@@ -47,11 +47,13 @@ struct Contact {
   // and slip(x) = slip_offset + t.x over the dofs (p, a, b); see kernels/contact_geometry.
   double g[6] = {}, t[6] = {};
   double gap_offset = 0.0, slip_offset = 0.0;
-  double gap_start = 0.0;  // the gap at the start of the step
-  double slide_slip = 0.0;  // step slip where friction_force was set (without inertia)
+  double gap_start = 0.0;        // the gap at the start of the step
+  double slide_slip = 0.0;       // step slip where friction_force was set (without inertia)
   double slide_stiffness = 0.0;  // its sliding spring (N/m), softened while it slides freely
   double last_excess = 0.0;      // its shear force past the capacity, last iteration (N)
   double anchor_start = 0.0;     // shear_spring at the step start or when it closed (m)
+  double overlap = 0.0;          // overlap at this step's start no solve resisted: no force (m)
+  double end_gap = 0.0;          // the gap its force came from at the end of the last step (m)
 };
 
 /// Joint parameters that contacts use, derived from the scene.
@@ -66,6 +68,10 @@ struct ContactParameters {
   // inertia (friction is a bare load), a small fraction of ks without (analysis "static"
   // or "quasi-static"), where nothing else would hold a block that slides.
   double sliding_stiffness = 0.0;
+  // Without inertia, an overlap found at a step's start that no solve resisted carries no
+  // force and heals as the faces part (ContactStage::detect). With inertia the penalty
+  // spring's push-back is part of the momentum balance and stays.
+  bool forgive_unresisted_overlap = false;
 };
 
 /// Contact detection, springs and states over a step.
@@ -148,8 +154,7 @@ class ContactStage {
   /// Coulomb's law with inertia: friction is a load from the last normal force.
   ShearUpdate update_shear_with_inertia(Contact& c, double gap, double slip, double tolerance);
   /// Coulomb's law without inertia: a sliding contact keeps the spring sliding_stiffness.
-  ShearUpdate update_shear_without_inertia(Contact& c, double gap, double slip,
-                                           double tolerance);
+  ShearUpdate update_shear_without_inertia(Contact& c, double gap, double slip, double tolerance);
   /// The normal force friction uses at gap `gap` (lagged once the shear has swung).
   double friction_normal_force(Contact& c, double gap) const;
   /// Friction (and cohesion, while bonded) under `normal_force`; a bond sheared past it by

@@ -17,7 +17,7 @@ namespace rockdd {
 struct AnchorSpring {
   std::int32_t node = -1;     // a corner of a fragment
   std::int32_t partner = -1;  // its copy in the partner block, or -1: tied to the step start
-  double stiffness = 0.0;     // N/m
+  double stiffness = 0.0;     // N/m, to the partner's (or the step start's) motion in the step
 };
 
 /// The springs of every fragment of `model`: stiffness `relative` x E0 t to the partner,
