@@ -167,6 +167,17 @@ TEST(Damage, DissipatesWhatTheSecantLawCannotReturn) {
   const double stored = run.history.at("energy.strain").back();
   EXPECT_NEAR(run.history.at("energy.external_work").back(), stored + dissipated.back(),
               1.1 * 0.5 * (young * eps_1 - lambda * ft0) * rate * volume);
+  // summary.json splits the same balance: all of it damage (no contacts, no fragments to
+  // anchor), and "unaccounted" is exactly the trapezoidal rule's share above.
+  const auto& energy = run.result.summary.at("energy");
+  EXPECT_NEAR(energy.at("damage_dissipation").get<double>(), dissipated.back(),
+              1e-12 * expected);
+  EXPECT_EQ(energy.at("friction_dissipation").get<double>(), 0.0);
+  EXPECT_EQ(energy.at("anchor_work").get<double>(), 0.0);
+  EXPECT_NEAR(energy.at("unaccounted").get<double>(),
+              run.history.at("energy.external_work").back() - stored - dissipated.back() -
+                  run.history.at("energy.kinetic").back(),
+              1e-9 * expected);
 }
 
 TEST(Fracture, SameSeedSameHistoryWhateverTheThreads) {
