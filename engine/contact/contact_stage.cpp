@@ -70,7 +70,8 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   boundary_ = extract_block_boundary(model);
   const auto num_bodies = static_cast<std::int32_t>(model.sets.bodies.size());
   rules_.num_bodies = num_bodies;
-  rules_.allowed.assign(static_cast<std::size_t>(num_bodies * num_bodies), 0);
+  rules_.allowed.assign(static_cast<std::size_t>(num_bodies) * static_cast<std::size_t>(num_bodies),
+                        0);
   joint_friction_.assign(rules_.allowed.size(), 0.0);
   joint_cohesion_.assign(rules_.allowed.size(), 0.0);
   joint_tensile_.assign(rules_.allowed.size(), 0.0);
@@ -92,7 +93,8 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
     }
     for (const auto& [i, j] : pairs) {
       if (i >= num_bodies || j >= num_bodies) continue;
-      const std::size_t k = static_cast<std::size_t>(i * num_bodies + j);
+      const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(num_bodies) +
+                            static_cast<std::size_t>(j);
       rules_.allowed[k] = 1;
       joint_friction_[k] = std::tan(joint.friction_angle * std::numbers::pi / 180.0);
       joint_cohesion_[k] = joint.cohesion;
@@ -113,7 +115,8 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
       body_friction[model.element_body[e]] =
           scene.materials[model.element_material[e]].friction_angle.value_or(0.0);
     for (std::int32_t b = 0; b < num_bodies; ++b) {
-      const std::size_t k = static_cast<std::size_t>(b * num_bodies + b);
+      const std::size_t k = static_cast<std::size_t>(b) * static_cast<std::size_t>(num_bodies) +
+                            static_cast<std::size_t>(b);
       rules_.allowed[k] = 1;
       const double phi = crack ? crack->friction_angle : body_friction[b];
       joint_friction_[k] = std::tan(phi * std::numbers::pi / 180.0);
@@ -241,8 +244,9 @@ bool ContactStage::detect(std::span<const double> positions) {
     const auto vb =
         std::lower_bound(boundary_.vertices.begin(), boundary_.vertices.end(), c.vertex);
     const std::int32_t vertex_block = boundary_.vertex_block[vb - boundary_.vertices.begin()];
-    const std::size_t k = static_cast<std::size_t>(
-        rules_.block_body[vertex_block] * rules_.num_bodies + rules_.block_body[edge_block]);
+    const std::size_t k = static_cast<std::size_t>(rules_.block_body[vertex_block]) *
+                              static_cast<std::size_t>(rules_.num_bodies) +
+                          static_cast<std::size_t>(rules_.block_body[edge_block]);
     c.friction = joint_friction_[k];
     c.cohesion = joint_cohesion_[k];
     c.tensile_strength = joint_tensile_[k];

@@ -40,7 +40,7 @@ void check_folder_name(const TableReader& table, const std::string& name) {
 /// `geo` or `msh`: the file, resolved against the scene's folder, must exist and be readable.
 fs::path readable_file(const TableReader& table, std::string_view key, const fs::path& scene_dir) {
   const std::string name = *table.string(key);
-  const fs::path file = (scene_dir / fs::path(name)).lexically_normal();
+  fs::path file = (scene_dir / fs::path(name)).lexically_normal();
   std::error_code error;
   const auto status = fs::status(file, error);
   std::string problem;
