@@ -28,6 +28,7 @@ draws last.png fracture "$run"
 draws block.png fracture "$run" --color block --magnify 100
 draws s1.png fracture "$run" --color s1
 draws s3.png fracture "$run" --color s3 --step 0
+draws stages.png fracture "$run" --color damage --time 0 1e9 --dpi 60
 draws first.png fracture "$run" --step 0
 draws time.png fracture "$run" --time 1e9
 draws curve.png curve "$run" --x time --y "$col" --y-scale -1e-3 --mark-peak
@@ -43,6 +44,7 @@ refused() {
 }
 refused fracture "$tmp/no-such-run"
 refused fracture "$run" --step 999999999
+refused fracture "$run" --step 0 999999999
 refused curve "$run" --y no.such.column
 refused curve "$tmp/no-such-run" --y "$col"
 echo "plot fracture/curve: all checks passed"
