@@ -133,6 +133,45 @@ dir = "out"
 every = 0
 )";
 
+/// The block of block_on_base_geo() placed `depth` (m) into the base.
+std::string sunk_block_geo(double depth) {
+  return test::rectangle_geo(0, 0.0, 0.0, 4.0, 1.0, 0.5) +
+         test::rectangle_geo(10, 0.5, 1.0 - depth, 1.5, 1.5 - depth, 0.25) +
+         "Physical Surface(\"base\") = {1};\nPhysical Surface(\"block\") = {11};\n"
+         "Physical Curve(\"base_bottom\") = {1};\n";
+}
+
+TEST(Contact, OverlapNoSolveResistedCarriesNoForceWithoutInertia) {
+  // A block starts 10 um deep in its base, at rest, under gravity (docs/method-choices.md,
+  // "Unresisted overlap"). Without inertia that overlap is the contacts' zero: the block
+  // settles exactly as one placed on the surface does (u_x, u_y of every row within 1e-9 m;
+  // measured settlement 2.2e-6 m, the elastic shortening of block and base). A penalty
+  // push from the overlap (kn = 20 E t = 2e11 N/m per contact) would lift it by about
+  // 1e-5 m. With inertia the push stays: the block leaves the base upwards (largest
+  // u_y > 5e-6 m).
+  const std::vector<std::string> at_rest = {"initial.0.velocity=[0.0, 0.0]", "time.end=0.005"};
+  auto quasi_static = at_rest;
+  quasi_static.push_back("scene.analysis=\"quasi-static\"");
+  const auto placed = test::run_scene_text(kBlockOnBaseScene, quasi_static, 0,
+                                           {{"block_on_base.geo", sunk_block_geo(0.0)}});
+  const auto sunk = test::run_scene_text(kBlockOnBaseScene, quasi_static, 0,
+                                         {{"block_on_base.geo", sunk_block_geo(1e-5)}});
+  ASSERT_TRUE(placed.result.ok) << placed.result.reason;
+  ASSERT_TRUE(sunk.result.ok) << sunk.result.reason;
+  ASSERT_EQ(placed.history.at("block.uy").size(), sunk.history.at("block.uy").size());
+  EXPECT_LT(placed.history.at("block.uy").back(), -1e-6);  // it did settle
+  for (const char* column : {"block.ux", "block.uy"})
+    for (std::size_t i = 0; i < sunk.history.at(column).size(); ++i)
+      EXPECT_NEAR(sunk.history.at(column)[i], placed.history.at(column)[i], 1e-9)
+          << column << " row " << i;
+
+  const auto pushed = test::run_scene_text(kBlockOnBaseScene, at_rest, 0,
+                                           {{"block_on_base.geo", sunk_block_geo(1e-5)}});
+  ASSERT_TRUE(pushed.result.ok) << pushed.result.reason;
+  const auto& uy = pushed.history.at("block.uy");
+  EXPECT_GT(*std::max_element(uy.begin(), uy.end()), 5e-6);
+}
+
 TEST(Friction, BrakesABlockSlidingOnAFlatBase) {
   // v0 = 2 m/s, mu = tan 20 deg: the block decelerates at mu g and stops after
   // v0 / (mu g) = 0.549 s at v0^2 / (2 mu g) = 0.549 m; within 2 % (measured +0.5 %).
