@@ -183,7 +183,8 @@ int monte_carlo(const Command& cmd) {
       cmd.out ? std::filesystem::path(*cmd.out) : std::filesystem::path());
   const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int threads = cmd.threads > 0 ? cmd.threads : hardware;
-  const int jobs = static_cast<int>(std::min<long>(cmd.realizations, cmd.jobs > 0 ? cmd.jobs : threads));
+  const int jobs =
+      static_cast<int>(std::min<long>(cmd.realizations, cmd.jobs > 0 ? cmd.jobs : threads));
   const int threads_per_run = std::max(1, threads / jobs);
   std::filesystem::create_directories(plan.dir);
   if (!cmd.quiet)
@@ -197,15 +198,19 @@ int monte_carlo(const Command& cmd) {
     if (pid < 0) throw std::runtime_error("mc: fork failed");
     if (pid == 0) {
       int status = 0;
-      try {
-        for (long r = w; r < cmd.realizations; r += jobs)
+      // A realization that throws leaves no summary.json (mc.csv reports it as crashed);
+      // the worker goes on with its other realizations. Bad input stops it: it is the
+      // same for every seed.
+      for (long r = w; r < cmd.realizations && status != 2; r += jobs) {
+        try {
           run_realization(scene, plan, r, threads_per_run, cmd.quiet);
-      } catch (const rockdd::InputError& e) {
-        std::cerr << "rockdd: error: " << e.what() << '\n';
-        status = 2;
-      } catch (const std::exception& e) {
-        std::cerr << "rockdd mc: " << e.what() << '\n';
-        status = 1;
+        } catch (const rockdd::InputError& e) {
+          std::cerr << "rockdd: error: " << e.what() << '\n';
+          status = 2;
+        } catch (const std::exception& e) {
+          std::cerr << "rockdd mc: seed " << plan.seed(r) << ": " << e.what() << '\n';
+          status = 1;
+        }
       }
       std::fflush(stderr);
       _exit(status);

@@ -296,11 +296,11 @@ bool ContactStage::detect(std::span<const double> positions) {
     const double resisted = before != nullptr && before->state != ContactState::open
                                 ? std::min(before->end_gap, 0.0)
                                 : 0.0;
-    c.overlap = c.state == ContactState::open || !parameters_.forgive_unresisted_overlap
-                    ? 0.0
-                    : std::max(resisted - c.gap_start, 0.0);
-    c.gap_offset += c.overlap;
-    c.gap_start += c.overlap;
+    const double overlap = c.state == ContactState::open || !parameters_.forgive_unresisted_overlap
+                               ? 0.0
+                               : std::max(resisted - c.gap_start, 0.0);
+    c.gap_offset += overlap;
+    c.gap_start += overlap;
     c.start_normal_force = c.state != ContactState::open && c.gap_start < 0.0
                                ? -parameters_.normal_stiffness * c.gap_start
                                : -1.0;
@@ -557,7 +557,8 @@ void ContactStage::commit(std::span<const double> positions) {
     // Energy: the springs' elastic energy, and friction's work over the slip the anchor
     // followed in this step (plastic slip, from where it stood at the step start or closing).
     const double slip = step_slip(c, positions);
-    const double normal = kn * linear_gap(c, positions);
+    c.end_gap = linear_gap(c, positions);
+    const double normal = kn * c.end_gap;
     const double shear = c.state == ContactState::locked
                              ? ks * (c.shear_spring + slip)
                              : -c.friction_force + c.slide_stiffness * (slip - c.slide_slip);
@@ -566,7 +567,6 @@ void ContactStage::commit(std::span<const double> positions) {
     // The anchor is kept in the next step's slip coordinate, which starts from 0.
     c.shear_spring += slip;
     c.anchor_start = c.shear_spring;
-    c.end_gap = linear_gap(c, positions);
   }
   started_ = true;
   committed_ = contacts_;

@@ -52,7 +52,6 @@ struct Contact {
   double slide_stiffness = 0.0;  // its sliding spring (N/m), softened while it slides freely
   double last_excess = 0.0;      // its shear force past the capacity, last iteration (N)
   double anchor_start = 0.0;     // shear_spring at the step start or when it closed (m)
-  double overlap = 0.0;          // overlap at this step's start no solve resisted: no force (m)
   double end_gap = 0.0;          // the gap its force came from at the end of the last step (m)
 };
 
