@@ -15,7 +15,7 @@
 #include "engine/contact/contact_stage.hpp"
 #include "engine/damage/damage_stage.hpp"
 #include "engine/damage/detachment.hpp"
-#include "engine/damage/fragment_anchors.hpp"
+#include "engine/damage/fragment_restraint.hpp"
 #include "engine/errors.hpp"
 #include "engine/loading/external_loads.hpp"
 #include "engine/output/probes.hpp"
@@ -37,14 +37,6 @@ constexpr int kSettlingIterations = 2;
 
 /// Doublings of the open-close force tolerance allowed to a chattering step (at most 4x).
 constexpr int kMaxRelaxationDoublings = 2;
-
-/// Springs (fractions of the fragment's E0 t) tying a fragment's corners to their copies in a
-/// neighbouring block, or (no copy there) to where the step started, in steps without inertia.
-constexpr double kRelativeAnchor = 1.0;
-constexpr double kAbsoluteAnchor = 1e-3;
-
-/// Re-solves of one step for newly damaged elements before the step goes on regardless.
-constexpr int kMaxDamageIterations = 20;
 
 /// Rotation (rad) an element may turn before the stiffness is reassembled in its new frame.
 constexpr double kFrameTolerance = 1e-3;
@@ -132,10 +124,6 @@ void Simulation::rebuild_layout() {
     const std::vector<std::int32_t> triples = contact_->triples();
     conn.insert(conn.end(), triples.begin(), triples.end());
   }
-  // Fragment anchors between two nodes enter as (node, partner, partner).
-  first_anchor_slot_ = static_cast<std::int32_t>(conn.size() / 3);
-  for (const AnchorSpring& a : anchors_)
-    if (a.partner >= 0) conn.insert(conn.end(), {a.node, a.partner, a.partner});
   layout_ = build_stiffness_layout(conn, model_.num_nodes(), bc_.equation);
   values_.assign(static_cast<std::size_t>(layout_.pattern.nnz()), 0.0);
   if (contact_) base_values_.assign(values_.size(), 0.0);
@@ -150,7 +138,7 @@ void Simulation::prepare_system(double mass_coefficient) {
     std::span<double> target =
         contact_ ? std::span<double>(base_values_) : std::span<double>(values_);
     assemble_stiffness(model_, coloring_, layout_, bc_.equation, mass_coefficient, target);
-    add_anchor_stiffness(target);
+    fragments_.add_stiffness(bc_.equation, layout_.diagonal, target);
   }
   factorized_mass_coefficient_ = mass_coefficient;
   if (contact_) return;  // factorized in every open-close iteration, with the springs
@@ -236,7 +224,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     compute_internal_force(model_, coloring_, u_trial_, model_.strain, model_.stress, f_int_,
                            corotational_);
     for (std::size_t d = 0; d < num_dofs; ++d) du_[d] = u_trial_[d] - model_.u[d];
-    anchor_forces(du_, anchor_force_);
+    fragments_.forces(du_, anchor_force_);
   }
   // The damage iteration (METHOD.md): while elements newly damage, re-solve the same step
   // with their reduced moduli.
@@ -245,7 +233,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     if (!damage_) break;
     const DamageChange change = evaluate_damage();
     if (change.newly_damaged == 0) break;
-    if (pass >= kMaxDamageIterations) {
+    if (pass >= scene_.fracture.max_damage_passes) {
       ++damage_limit_hits_;
       break;
     }
@@ -285,7 +273,7 @@ DamageChange Simulation::evaluate_damage() {
   compute_internal_force(model_, coloring_, positions_, model_.strain, model_.stress, damage_force_,
                          corotational_);
   damage_before_ = model_.damage;
-  const DamageChange change = damage_->evaluate(model_);
+  const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band);
   if (change.grown > 0) {
     factorized_mass_coefficient_ = -1.0;  // the moduli changed
     attempt_damage_dissipation_ += released_by_damage(damage_before_);
@@ -394,7 +382,7 @@ void Simulation::commit_step(double dt) {
     contact_->add_springs(positions_, layout_, model_.num_elements(), {}, f_contact_);
     contact_->commit(positions_);
   }
-  anchor_forces(du_, anchor_force_);
+  fragments_.forces(du_, anchor_force_);
   // The anchors restart from zero force next step: the energy they hold now leaves the
   // balance, a loss of the method (not of the rock) that summary.json reports.
   for (std::size_t d = 0; d < num_dofs; ++d) anchor_energy_ += 0.5 * anchor_force_[d] * du_[d];
@@ -444,49 +432,11 @@ void Simulation::detach_fractured_elements() {
   probes_ = std::move(probes);
   coloring_ = color_elements(model_.conn, model_.num_nodes());
   if (scene_.analysis != Analysis::dynamic)
-    anchors_ = anchor_fragments(model_, kRelativeAnchor, kAbsoluteAnchor);
+    fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness);
   auto contact = std::make_unique<ContactStage>(scene_, model_);
   if (contact_) contact->carry_contacts_from(*contact_);
   contact_ = std::move(contact);
   rebuild_layout();
-}
-
-void Simulation::add_anchor_stiffness(std::span<double> target) const {
-  auto add = [&](std::size_t slot, int a, int b, double k) {
-    // Entry (a, b), a <= b, of the slot's upper triangle, row-major.
-    const int entry = a * 6 - a * (a - 1) / 2 + (b - a);
-    const std::int32_t to = layout_.scatter[slot * kElementUpperEntries + entry];
-    if (to >= 0) target[to] += k;
-  };
-  std::size_t slot = static_cast<std::size_t>(first_anchor_slot_);
-  for (const AnchorSpring& a : anchors_) {
-    if (a.partner < 0) {
-      for (int c = 0; c < 2; ++c) {
-        const std::int32_t eq = bc_.equation[2 * static_cast<std::size_t>(a.node) + c];
-        if (eq >= 0) target[layout_.diagonal[eq]] += a.stiffness;
-      }
-      continue;
-    }
-    for (int c = 0; c < 2; ++c) {
-      add(slot, c, c, a.stiffness);
-      add(slot, 2 + c, 2 + c, a.stiffness);
-      add(slot, c, 2 + c, -a.stiffness);
-    }
-    ++slot;
-  }
-}
-
-void Simulation::anchor_forces(std::span<const double> du, std::vector<double>& force) const {
-  force.assign(du.size(), 0.0);
-  for (const AnchorSpring& a : anchors_)
-    for (int c = 0; c < 2; ++c) {
-      const std::size_t n = 2 * static_cast<std::size_t>(a.node) + c;
-      const std::size_t p = a.partner >= 0 ? 2 * static_cast<std::size_t>(a.partner) + c : n;
-      const double relative = a.partner >= 0 ? du[n] - du[p] : du[n];
-      const double f = a.stiffness * relative;
-      force[n] += f;
-      if (a.partner >= 0) force[p] -= f;
-    }
 }
 
 bool Simulation::Softening::observe(long at_step, double at_time, double v, double drop) {

@@ -14,7 +14,7 @@
 
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
-#include "engine/damage/fragment_anchors.hpp"
+#include "engine/damage/fragment_restraint.hpp"
 #include "engine/loading/boundary_conditions.hpp"
 #include "engine/model/model.hpp"
 #include "engine/output/run_outputs.hpp"
@@ -97,10 +97,6 @@ class Simulation {
   /// After a committed step: damaged elements become blocks, and what hangs on the nodes
   /// is rebuilt for the new topology.
   void detach_fractured_elements();
-  /// Adds the fragment anchors' springs to K (values over layout_).
-  void add_anchor_stiffness(std::span<double> target) const;
-  /// The anchors' forces for a step increment du (2 per node).
-  void anchor_forces(std::span<const double> du, std::vector<double>& force) const;
   /// Elastic energy a damage pass released (J): the damage grown since `damage_before`, at the
   /// pass's strain (kernels::damage_dissipation).
   double released_by_damage(std::span<const double> damage_before) const;
@@ -143,9 +139,8 @@ class Simulation {
   };
   std::optional<FirstDamage> first_damage_, attempt_first_damage_;
   double attempt_time_ = 0.0;           // time at the end of the step being attempted
-  std::vector<AnchorSpring> anchors_;   // fragments tied in steps without inertia
-  std::int32_t first_anchor_slot_ = 0;  // layout slot of the first two-node anchor
-  std::vector<double> anchor_force_;    // the anchors' force at the step's trial increment
+  FragmentRestraint fragments_;        // loose blocks held in steps without inertia
+  std::vector<double> anchor_force_;   // the restraint's force at the step's trial increment
 
   // Step state (2 per node unless noted).
   std::vector<double> acceleration_, f_int_, f_ext_, f_ext_old_, reaction_, reaction_old_;

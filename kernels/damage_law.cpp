@@ -91,6 +91,28 @@ double damage_dissipation(const double eps[3], double young, double poisson, Pla
          (effective_modulus(young, w_old, floor) - effective_modulus(young, w_new, floor));
 }
 
+double onset_ratio(const double eps[3], const double sig[3], const DamageParams& p,
+                   PlaneKind plane, double w_old) {
+  const double scale = 1.0 / std::max(1.0 - w_old, p.floor);
+  const double se[3] = {sig[0] * scale, sig[1] * scale, sig[2] * scale};
+  double ratio = 0.0;
+  if (p.ft0 > 0.0) {
+    if (p.onset == TensionOnset::stress) {
+      double s1, s2;
+      principal_values(se[0], se[1], se[2], s1, s2);
+      ratio = s1 / p.ft0;
+    } else {
+      ratio = equivalent_tensile_strain(eps, p.poisson, plane) / (p.ft0 / p.young);
+    }
+  }
+  if (p.fc0 > 0.0) {
+    double c[3];
+    compressive_principal_stresses(se, p.poisson, plane, c);
+    ratio = std::max(ratio, (c[0] - mohr_coulomb_factor(p.phi) * c[2]) / p.fc0);
+  }
+  return ratio;
+}
+
 DamageUpdate evaluate_damage(const double eps[3], const double sig[3], const DamageParams& p,
                              PlaneKind plane, double w_old) {
   if (w_old >= 1.0) return {w_old, DamageLaw::none};  // nothing left to lose

@@ -95,6 +95,14 @@ double effective_modulus(double young, double w, double floor = kDefaultStiffnes
 double damage_dissipation(const double eps[3], double young, double poisson, PlaneKind plane,
                           double w_old, double w_new, double floor = kDefaultStiffnessFloor);
 
+/// How far an undamaged element stands past its onset: the larger of the tensile ratio (s1 / ft0
+/// for a stress onset, eps_bar / eps_t0 for a strain onset) and the Mohr-Coulomb ratio
+/// (c1 - k c3) / fc0, on the effective stress as in evaluate_damage. A law fires exactly when
+/// its ratio is >= 1; laws that are off (strength <= 0) give 0. Used to order damage events:
+/// the most overstressed elements fail first.
+double onset_ratio(const double eps[3], const double sig[3], const DamageParams& p,
+                   PlaneKind plane, double w_old);
+
 /// New damage of an element: max(w_old, w_law), w_law from the first criterion that holds
 /// (tension, then Mohr-Coulomb). sig is the element's stress under its current (damaged)
 /// modulus; the criteria use the effective stress sig / max(1 - w_old, floor), so a softening

@@ -156,6 +156,10 @@ TEST(SceneReader, ReadsEveryFieldOfTheExample) {
   EXPECT_EQ(s.output.fields,
             (std::vector<std::string>{"displacement", "stress", "damage", "block"}));
 
+  EXPECT_DOUBLE_EQ(s.fracture.damage_band, 0.005);
+  EXPECT_EQ(s.fracture.max_damage_passes, 500);
+  EXPECT_DOUBLE_EQ(s.fracture.fragment_stiffness, 1e-6);
+
   // The example writes every key that has a default: nothing was chosen for it.
   EXPECT_TRUE(s.defaults.empty()) << s.defaults.front().first;
 }
@@ -189,6 +193,9 @@ TEST(SceneReader, StaticSceneWithoutTimeRunsOneStepAndRecordsEveryDefault) {
       {"material[0].ultimate_strain", "5"},
       {"material[0].tension_onset", "stress"},
       {"material[0].detach_at_damage", "0"},
+      {"fracture.damage_band", "0.005"},  // recorded since the material can damage
+      {"fracture.max_damage_passes", "500"},
+      {"fracture.fragment_stiffness", "1e-06"},
       {"output.dir", "out"},
       {"output.every", "100"},
       {"output.fields",

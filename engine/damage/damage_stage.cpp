@@ -26,34 +26,60 @@ double DamageStage::detach_threshold(const Model& model, std::int32_t e) const {
   return detach_at_[static_cast<std::size_t>(model.element_material[e])];
 }
 
-DamageChange DamageStage::evaluate(Model& model) const {
+kernels::DamageParams DamageStage::element_params(const Model& model, std::int32_t e) const {
+  kernels::DamageParams p = params_[static_cast<std::size_t>(model.element_material[e])];
+  p.young = model.young[e];
+  p.ft0 = model.tensile_strength[e];
+  p.fc0 = model.compressive_strength[e];
+  p.phi = model.friction_angle[e];
+  return p;
+}
+
+DamageChange DamageStage::evaluate(Model& model, double band) {
   using Range = tbb::blocked_range<std::int32_t>;
+  const std::int32_t num_elements = model.num_elements();
+  ratio_.assign(static_cast<std::size_t>(num_elements), 0.0);
+  // The largest onset ratio among undamaged elements: a max does not depend on the order.
+  const double largest = tbb::parallel_reduce(
+      Range(0, num_elements, 1024), 0.0,
+      [&](const Range& range, double top) {
+        for (std::int32_t e = range.begin(); e != range.end(); ++e) {
+          if (!damageable_[static_cast<std::size_t>(model.element_material[e])] ||
+              model.damage[e] > 0.0)
+            continue;
+          const auto i = 3 * static_cast<std::size_t>(e);
+          ratio_[e] = kernels::onset_ratio(&model.strain[i], &model.stress[i],
+                                           element_params(model, e), plane_, 0.0);
+          top = std::max(top, ratio_[e]);
+        }
+        return top;
+      },
+      [](double a, double b) { return std::max(a, b); });
+  const double event = largest / (1.0 + band);
   return tbb::parallel_reduce(
-      Range(0, model.num_elements(), 1024), DamageChange{},
+      Range(0, num_elements, 1024), DamageChange{},
       [&](const Range& range, DamageChange change) {
         for (std::int32_t e = range.begin(); e != range.end(); ++e) {
-          const auto mi = static_cast<std::size_t>(model.element_material[e]);
-          if (!damageable_[mi]) continue;
-          kernels::DamageParams p = params_[mi];
-          p.young = model.young[e];
-          p.ft0 = model.tensile_strength[e];
-          p.fc0 = model.compressive_strength[e];
-          p.phi = model.friction_angle[e];
+          if (!damageable_[static_cast<std::size_t>(model.element_material[e])]) continue;
           const double w_old = model.damage[e];
+          const auto i = 3 * static_cast<std::size_t>(e);
           const kernels::DamageUpdate update = kernels::evaluate_damage(
-              &model.strain[3 * static_cast<std::size_t>(e)],
-              &model.stress[3 * static_cast<std::size_t>(e)], p, plane_, w_old);
-          if (update.w > w_old) {
-            model.damage[e] = update.w;
-            ++change.grown;
-            if (w_old == 0.0) ++change.newly_damaged;
+              &model.strain[i], &model.stress[i], element_params(model, e), plane_, w_old);
+          if (update.w <= w_old) continue;
+          if (w_old == 0.0 && ratio_[e] < event) {
+            ++change.deferred;
+            continue;
           }
+          model.damage[e] = update.w;
+          ++change.grown;
+          if (w_old == 0.0) ++change.newly_damaged;
         }
         return change;
       },
       [](DamageChange a, const DamageChange& b) {
         a.newly_damaged += b.newly_damaged;
         a.grown += b.grown;
+        a.deferred += b.deferred;
         return a;
       });
 }

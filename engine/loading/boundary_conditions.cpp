@@ -34,11 +34,12 @@ BoundaryConditions build_boundary_conditions(const Scene& scene, const Model& mo
   return bc;
 }
 
-std::optional<FreeBlock> find_free_block(const Model& model, const BoundaryConditions& bc,
-                                         std::int32_t min_elements) {
-  // For each block, G = sum over prescribed dofs of r r^T with r the dof's value in the three
-  // rigid modes (x translation, y translation, rotation about the block centroid). The block
-  // is held exactly when G is regular.
+namespace {
+
+/// Per block, G = sum over prescribed dofs of r r^T with r the dof's value in the three rigid
+/// modes (x translation, y translation, rotation about the block centroid, lengths scaled by
+/// the block's size). The block is held exactly when G is regular.
+std::vector<Eigen::Matrix3d> restraint_gram(const Model& model, const BoundaryConditions& bc) {
   const auto num_blocks = static_cast<std::size_t>(model.num_blocks);
   std::vector<Eigen::Vector2d> centroid(num_blocks, Eigen::Vector2d::Zero());
   std::vector<double> count(num_blocks, 0.0), size(num_blocks, 0.0);
@@ -67,13 +68,34 @@ std::optional<FreeBlock> find_free_block(const Model& model, const BoundaryCondi
       g[b] += r * r.transpose();
     }
   }
+  return g;
+}
+
+/// The slowest rigid mode of a Gram matrix, and whether the constraints miss it.
+bool misses_a_mode(const Eigen::Matrix3d& g, Eigen::Vector3d* mode = nullptr) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(g);
+  if (mode) *mode = eig.eigenvectors().col(0);
+  return eig.eigenvalues()(0) <= 1e-10;
+}
+
+}  // namespace
+
+std::vector<std::uint8_t> unrestrained_blocks(const Model& model, const BoundaryConditions& bc) {
+  const std::vector<Eigen::Matrix3d> g = restraint_gram(model, bc);
+  std::vector<std::uint8_t> free(g.size(), 0);
+  for (std::size_t b = 0; b < g.size(); ++b) free[b] = misses_a_mode(g[b]) ? 1 : 0;
+  return free;
+}
+
+std::optional<FreeBlock> find_free_block(const Model& model, const BoundaryConditions& bc,
+                                         std::int32_t min_elements) {
+  const std::vector<Eigen::Matrix3d> g = restraint_gram(model, bc);
+  const std::size_t num_blocks = g.size();
   std::vector<std::int32_t> elements(num_blocks, 0);
   for (std::int32_t e = 0; e < model.num_elements(); ++e) ++elements[model.element_block[e]];
   for (std::size_t b = 0; b < num_blocks; ++b) {
-    if (elements[b] < min_elements) continue;
-    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(g[b]);
-    if (eig.eigenvalues()(0) > 1e-10) continue;
-    const Eigen::Vector3d mode = eig.eigenvectors().col(0);
+    Eigen::Vector3d mode;
+    if (elements[b] < min_elements || !misses_a_mode(g[b], &mode)) continue;
     FreeBlock free{static_cast<std::int32_t>(b), elements[b], "",
                    std::abs(mode(2)) > 0.5                  ? "rotation"
                    : std::abs(mode(0)) >= std::abs(mode(1)) ? "x translation"

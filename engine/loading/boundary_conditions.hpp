@@ -36,6 +36,9 @@ struct FreeBlock {
 std::optional<FreeBlock> find_free_block(const Model& model, const BoundaryConditions& bc,
                                          std::int32_t min_elements = 1);
 
+/// Per block, 1 when the prescribed dofs do not hold all three of its rigid-body modes.
+std::vector<std::uint8_t> unrestrained_blocks(const Model& model, const BoundaryConditions& bc);
+
 /// A static analysis needs every block held against its three rigid-body modes; throws
 /// InputError naming the first block that is not (and its body).
 void check_static_restraint(const Scene& scene, const Model& model, const BoundaryConditions& bc);

@@ -114,6 +114,16 @@ struct ProbeSpec {
   std::vector<std::string> fields;
 };
 
+/// [fracture]: the numerical devices of damage and fracture (docs/method-choices.md,
+/// "Damage events" and "Fragment restraint"); docs/convergence.md measures each of them.
+struct FractureSpec {
+  double damage_band = 0.005;      // a damage pass starts damage only in elements within this
+                                   // fraction of the most overstressed one's onset ratio
+  int max_damage_passes = 500;     // damage passes per step before the step goes on regardless
+  double fragment_stiffness = 1e-6;  // spring per corner, x E0 t, on blocks no boundary holds,
+                                     // in steps without inertia
+};
+
 /// [output]
 struct OutputSpec {
   std::filesystem::path dir = "out";
@@ -139,6 +149,7 @@ struct Scene {
   std::vector<BoundarySpec> boundaries;
   std::vector<LoadSpec> loads;
   std::vector<ProbeSpec> probes;
+  FractureSpec fracture;
   OutputSpec output;
   /// Defaults the reader chose, as ("key.path", "value") for summary.json.
   std::vector<std::pair<std::string, std::string>> defaults;

@@ -256,6 +256,23 @@ void check_softening_probe(TableReader& root, const Scene& scene) {
                                    "), got \"" + column + "\"");
 }
 
+FractureSpec read_fracture(TableReader& root, bool has_damage) {
+  // Defaults are listed only where they are used: in scenes whose materials can damage.
+  if (!has_damage && !root.has("fracture")) return {};
+  TableReader table = optional_table(root, "fracture");
+  table.allow_only({"damage_band", "max_damage_passes", "fragment_stiffness"});
+  FractureSpec fracture;
+  fracture.damage_band = table.number_or("damage_band", fracture.damage_band, above(0));
+  if (auto passes = table.integer("max_damage_passes", 1, 1000000)) {
+    fracture.max_damage_passes = static_cast<int>(*passes);
+  } else {
+    table.record_default("max_damage_passes", std::to_string(fracture.max_damage_passes));
+  }
+  fracture.fragment_stiffness =
+      table.number_or("fragment_stiffness", fracture.fragment_stiffness, between(0, false, 1, true));
+  return fracture;
+}
+
 OutputSpec read_output(TableReader& root) {
   TableReader table = optional_table(root, "output");
   table.allow_only({"dir", "every", "fields"});

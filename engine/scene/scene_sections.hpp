@@ -19,6 +19,10 @@ TimeSpec read_time(TableReader& root, Analysis analysis);
 /// and checked to be readable.
 MeshSpec read_mesh(TableReader& root, const std::filesystem::path& scene_dir);
 
+/// [fracture] (optional): the numerical devices of damage and fracture; their defaults are
+/// recorded only when `has_damage` (a material can damage).
+FractureSpec read_fracture(TableReader& root, bool has_damage);
+
 /// [output] (optional): folder, frame interval and VTU fields.
 OutputSpec read_output(TableReader& root);
 /// time.softening_probe names a history column of the scene's probes.
