@@ -8,7 +8,7 @@
 // (2) BM_RebuildAfterDetachment: what Simulation::detach_fractured_elements rebuilds after it:
 //     the step's 11 node fields follow the split, boundary conditions and reference loads,
 //     element colouring, the contact stage (block boundary, contacts carried over from the
-//     stage before), the fragment anchors (steps without inertia), the stiffness layout and
+//     stage before), the fragment restraint (steps without inertia), the stiffness layout and
 //     CHOLMOD's symbolic analysis; `*_ms` counters give each part. Probes and the static
 //     free-block check are left out.
 // Both whole passes scale with the mesh, not with k: `per_damaged` (seconds per newly damaged

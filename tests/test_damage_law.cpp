@@ -399,3 +399,45 @@ TEST(DamageLaw, DissipationIsTheElasticEnergyTheModulusDropReleases) {
 }
 
 }  // namespace
+
+TEST(DamageLaw, OnsetRatioIsOneExactlyWhereALawFires) {
+  // onset_ratio orders damage events: max(s1 / ft0, (c1 - k c3) / fc0) on the effective stress
+  // sigma / (1 - w). Closed forms: uniaxial tension s gives s / ft0; uniaxial compression q
+  // gives q / fc0 (c3 = 0 in plane stress); pure shear tau gives max(tau / ft0,
+  // (tau + k tau) / fc0). The ratio crosses 1 where evaluate_damage starts damage (1e-12).
+  const k::DamageParams p = params();
+  const double kf = k::mohr_coulomb_factor(kPhi);
+  for (double s : {0.5 * kFt, kFt, 1.7 * kFt}) {
+    const double sig[3] = {s, 0.0, 0.0}, eps[3] = {s / kE0, -kNu * s / kE0, 0.0};
+    expect_rel(k::onset_ratio(eps, sig, p, PlaneKind::stress, 0.0), s / kFt, 1e-12);
+    // A damaged element is judged on its effective stress.
+    expect_rel(k::onset_ratio(eps, sig, p, PlaneKind::stress, 0.5), 2 * s / kFt, 1e-12);
+  }
+  for (double q : {0.3 * kFc, kFc, 1.2 * kFc}) {
+    const double sig[3] = {0.0, -q, 0.0}, eps[3] = {kNu * q / kE0, -q / kE0, 0.0};
+    expect_rel(k::onset_ratio(eps, sig, p, PlaneKind::stress, 0.0),
+               std::max(0.0, q / kFc), 1e-12);
+  }
+  const double tau = 2e6;
+  const double sig[3] = {0.0, 0.0, tau};
+  const double eps[3] = {0.0, 0.0, 2 * (1 + kNu) * tau / kE0};
+  expect_rel(k::onset_ratio(eps, sig, p, PlaneKind::stress, 0.0),
+             std::max(tau / kFt, (1 + kf) * tau / kFc), 1e-12);
+  // Strain onset: eps_bar / eps_t0, with eps_bar = eps1 for uniaxial tension in plane stress.
+  const k::DamageParams ps = params(TensionOnset::strain);
+  const double s = 0.8 * kFt;
+  const double st[3] = {s, 0.0, 0.0}, et[3] = {s / kE0, -kNu * s / kE0, 0.0};
+  expect_rel(k::onset_ratio(et, st, ps, PlaneKind::stress, 0.0),
+             k::equivalent_tensile_strain(et, kNu, PlaneKind::stress) / (kFt / kE0), 1e-12);
+  // Laws that are off give 0.
+  k::DamageParams off = params();
+  off.ft0 = 0.0;
+  off.fc0 = 0.0;
+  EXPECT_EQ(k::onset_ratio(et, st, off, PlaneKind::stress, 0.0), 0.0);
+  // Consistency with the laws: just below 1 no law fires, just above one does.
+  for (double f : {1 - 1e-9, 1 + 1e-9}) {
+    const double sg[3] = {f * kFt, 0.0, 0.0}, eg[3] = {f * kFt / kE0, -kNu * f * kFt / kE0, 0.0};
+    const bool fires = k::evaluate_damage(eg, sg, p, PlaneKind::stress, 0.0).w > 0.0;
+    EXPECT_EQ(fires, k::onset_ratio(eg, sg, p, PlaneKind::stress, 0.0) >= 1.0);
+  }
+}

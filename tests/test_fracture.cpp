@@ -7,6 +7,7 @@
 #include <numeric>
 #include <random>
 
+#include "engine/damage/damage_stage.hpp"
 #include "engine/damage/detachment.hpp"
 #include "test_support.hpp"
 
@@ -230,6 +231,74 @@ TEST(Fracture, SplittingConservesMassAndMomentum) {
     for (int c = 0; c < 2; ++c) EXPECT_EQ(model.X[2 * n + c], model.X[2 * d.node_origin[n] + c]);
   // Detaching again with nothing new changes nothing.
   EXPECT_EQ(detach_damaged_elements(model, threshold, detached).detached, 0);
+}
+
+}  // namespace
+}  // namespace rockdd
+
+namespace rockdd {
+namespace {
+
+TEST(DamageEvents, OnlyTheMostOverstressedElementsStartDamageInOnePass) {
+  // DamageStage::evaluate starts damage only in elements whose onset ratio (s1 / ft0 here) is
+  // >= max / (1 + band); the others past their onset are deferred to the next pass. Two
+  // elements of a 1 x 1 rectangle at s1 = 1.2 ft and 1.1 ft: band 0.005 damages the first
+  // alone (1.2 / 1.005 > 1.1), band 0.1 both (1.2 / 1.1 = 1.09 < 1.1). Damage of an element
+  // already damaged grows whatever the band.
+  test::TempDir dir;
+  const Scene scene = test::scene_from_text(R"(
+[scene]
+name = "two"
+analysis = "quasi-static"
+[time]
+dt = 1.0
+steps = 1
+[mesh]
+shape = "rectangle"
+size = [0.1, 0.1]
+divisions = [1, 1]
+[[material]]
+density = 2700.0
+young = 20e9
+poisson = 0.2
+tensile_strength = 2e6
+[[boundary]]
+on = "left"
+fix = ["x", "y"]
+)",
+                                            dir.path());
+  const double ft = 2e6, young = 20e9;
+  auto load = [&](Model& model, double s0, double s1) {
+    const double s[2] = {s0, s1};
+    for (int e = 0; e < 2; ++e) {
+      const double sig = s[e] * (1.0 - model.damage[e]);
+      model.stress[3 * e] = sig;
+      model.stress[3 * e + 1] = model.stress[3 * e + 2] = 0.0;
+      model.strain[3 * e] = s[e] / young;
+      model.strain[3 * e + 1] = -0.2 * s[e] / young;
+      model.strain[3 * e + 2] = 0.0;
+    }
+  };
+  for (const auto& [band, expected] : std::vector<std::pair<double, int>>{{0.005, 1}, {0.1, 2}}) {
+    Model model = build_scene_model(scene);
+    ASSERT_EQ(model.num_elements(), 2);
+    DamageStage stage(scene, model);
+    load(model, 1.2 * ft, 1.1 * ft);
+    const DamageChange change = stage.evaluate(model, band);
+    EXPECT_EQ(change.newly_damaged, expected) << "band " << band;
+    EXPECT_EQ(change.deferred, 2 - expected) << "band " << band;
+    EXPECT_GT(model.damage[0], 0.0);
+    EXPECT_EQ(model.damage[1] > 0.0, expected == 2);
+    if (expected == 1) {
+      // Next pass: the first element strained further grows even though the second now leads.
+      const double w0 = model.damage[0];
+      load(model, 3.0 * ft, 1.1 * ft);
+      const DamageChange next = stage.evaluate(model, band);
+      EXPECT_GT(model.damage[0], w0);
+      EXPECT_EQ(next.newly_damaged, 1);
+      EXPECT_EQ(next.grown, 2);
+    }
+  }
 }
 
 }  // namespace
