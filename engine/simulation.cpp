@@ -84,11 +84,7 @@ Simulation::Simulation(Scene scene, Model model)
   }
   rebuild_layout();
 
-  const std::size_t num_dofs = model_.X.size();
-  for (auto* field : {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_,
-                      &u_trial_, &du_, &f_contact_, &positions_, &damage_force_, &anchor_force_})
-    field->assign(num_dofs, 0.0);
-  rhs_.assign(static_cast<std::size_t>(bc_.num_equations), 0.0);
+  state_.resize(model_.X.size(), bc_.num_equations);
   for (const InitialSpec& init : scene_.initial) {
     // Rigid motion of the body: v = v0 + omega x (x - centroid).
     const auto& bodies = model_.sets.bodies;
@@ -152,9 +148,11 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
     {
       ScopedTimer timer(timers_.contact);
       std::copy(base_values_.begin(), base_values_.end(), values_.begin());
-      std::fill(f_contact_.begin(), f_contact_.end(), 0.0);
-      for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + u_trial_[d];
-      contact_->add_springs(positions_, layout_, model_.num_elements(), values_, f_contact_);
+      std::fill(state_.f_contact.begin(), state_.f_contact.end(), 0.0);
+      for (std::size_t d = 0; d < num_dofs; ++d)
+        state_.positions[d] = model_.X[d] + state_.u_trial[d];
+      contact_->add_springs(state_.positions, layout_, model_.num_elements(), values_,
+                            state_.f_contact);
     }
     ScopedTimer timer(timers_.factorization);
     if (bc_.num_equations > 0 && !factor_current) solver_.factorize(values_.data());
@@ -163,17 +161,19 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
     const std::int32_t eq = bc_.equation[d];
     if (eq < 0) continue;
     const double m = model_.node_mass[d / 2];
-    rhs_[eq] = f_ext_[d] - f_int_[d] - f_contact_[d] - anchor_force_[d] +
-               m * (inertia.velocity_coefficient * model_.v[d] +
-                    inertia.acceleration_coefficient * acceleration_[d]);
+    state_.rhs[eq] = state_.f_ext[d] - state_.f_int[d] - state_.f_contact[d] -
+                     state_.restraint_force[d] +
+                     m * (inertia.velocity_coefficient * model_.v[d] +
+                          inertia.acceleration_coefficient * state_.acceleration[d]);
   }
   if (bc_.num_equations > 0) {
     ScopedTimer timer(timers_.solve);
-    solver_.solve(rhs_.data(), rhs_.data());
+    solver_.solve(state_.rhs.data(), state_.rhs.data());
   }
   for (std::size_t d = 0; d < num_dofs; ++d) {
-    if (bc_.equation[d] >= 0) du_[d] = u_trial_[d] - model_.u[d] + rhs_[bc_.equation[d]];
-    if (!std::isfinite(du_[d])) {
+    if (bc_.equation[d] >= 0)
+      state_.du[d] = state_.u_trial[d] - model_.u[d] + state_.rhs[bc_.equation[d]];
+    if (!std::isfinite(state_.du[d])) {
       char buf[160];
       std::snprintf(buf, sizeof buf,
                     "step %ld: the displacement increment of node %zu is not finite "
@@ -200,8 +200,8 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     bool changed = false;
     {
       ScopedTimer timer(timers_.contact);
-      for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + model_.u[d];
-      changed = contact_->detect(positions_);
+      for (std::size_t d = 0; d < num_dofs; ++d) state_.positions[d] = model_.X[d] + model_.u[d];
+      changed = contact_->detect(state_.positions);
     }
     if (changed) rebuild_layout();
     if (scene_.analysis != Analysis::dynamic) contact_->set_force_scale(element_force_scale());
@@ -215,16 +215,16 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
   prepare_system(inertia.mass_coefficient);
 
   for (std::size_t d = 0; d < num_dofs; ++d) {
-    du_[d] = bc_.prescribed[d] ? bc_.velocity[d] * dt : 0.0;
-    u_trial_[d] = model_.u[d] + du_[d];
-    f_ext_[d] = load_factor * reference_loads_[d];
+    state_.du[d] = bc_.prescribed[d] ? bc_.velocity[d] * dt : 0.0;
+    state_.u_trial[d] = model_.u[d] + state_.du[d];
+    state_.f_ext[d] = load_factor * reference_loads_[d];
   }
   {
     ScopedTimer timer(timers_.assembly);
-    compute_internal_force(model_, coloring_, u_trial_, model_.strain, model_.stress, f_int_,
-                           corotational_);
-    for (std::size_t d = 0; d < num_dofs; ++d) du_[d] = u_trial_[d] - model_.u[d];
-    fragments_.forces(du_, anchor_force_);
+    compute_internal_force(model_, coloring_, state_.u_trial, model_.strain, model_.stress,
+                           state_.f_int, corotational_);
+    for (std::size_t d = 0; d < num_dofs; ++d) state_.du[d] = state_.u_trial[d] - model_.u[d];
+    fragments_.forces(state_.du, state_.restraint_force);
   }
   // The damage iteration (METHOD.md): while elements newly damage, re-solve the same step
   // with their reduced moduli.
@@ -234,17 +234,17 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     const DamageChange change = evaluate_damage();
     if (change.newly_damaged == 0) break;
     if (pass >= scene_.fracture.max_damage_passes) {
-      ++damage_limit_hits_;
+      ++stats_.damage_limit_hits;
       break;
     }
-    ++damage_iterations_;
+    ++stats_.damage_iterations;
     prepare_system(inertia.mass_coefficient);
     ScopedTimer timer(timers_.assembly);
-    compute_internal_force(model_, coloring_, u_trial_, model_.strain, model_.stress, f_int_,
-                           corotational_);
+    compute_internal_force(model_, coloring_, state_.u_trial, model_.strain, model_.stress,
+                           state_.f_int, corotational_);
   }
   double largest = 0.0;
-  for (std::size_t d = 0; d < num_dofs; ++d) largest = std::max(largest, std::abs(du_[d]));
+  for (std::size_t d = 0; d < num_dofs; ++d) largest = std::max(largest, std::abs(state_.du[d]));
   if (!control.displacement_ok(largest)) {
     char buf[160];
     std::snprintf(buf, sizeof buf,
@@ -269,9 +269,9 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
 DamageChange Simulation::evaluate_damage() {
   ScopedTimer timer(timers_.damage);
   const std::size_t num_dofs = model_.X.size();
-  for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.u[d] + du_[d];
-  compute_internal_force(model_, coloring_, positions_, model_.strain, model_.stress, damage_force_,
-                         corotational_);
+  for (std::size_t d = 0; d < num_dofs; ++d) state_.positions[d] = model_.u[d] + state_.du[d];
+  compute_internal_force(model_, coloring_, state_.positions, model_.strain, model_.stress,
+                         state_.damage_force, corotational_);
   damage_before_ = model_.damage;
   const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band);
   if (change.grown > 0) {
@@ -279,7 +279,7 @@ DamageChange Simulation::evaluate_damage() {
     attempt_damage_dissipation_ += released_by_damage(damage_before_);
   }
   if (change.newly_damaged > 0 && !first_damage_ && !attempt_first_damage_) {
-    FirstDamage first{steps_ + 1, attempt_time_, 0, 0.0, 0.0, 0.0};
+    FirstDamage first{stats_.steps + 1, attempt_time_, 0, 0.0, 0.0, 0.0};
     std::vector<std::array<double, 2>> centroids;
     for (std::int32_t e = 0; e < model_.num_elements(); ++e)
       if (model_.damage[e] > 0.0) centroids.push_back(reference_centroid(model_, e));
@@ -312,7 +312,8 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
     const std::vector<ContactSprings> before = contact_->springs();
     {
       ScopedTimer timer(timers_.contact);
-      for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + model_.u[d] + du_[d];
+      for (std::size_t d = 0; d < num_dofs; ++d)
+        state_.positions[d] = model_.X[d] + model_.u[d] + state_.du[d];
       // Contacts that chatter near zero force are indeterminate, not wrong: past half the
       // iteration limit the tolerance doubles each iteration, up to 4x (kMaxRelaxationDoublings),
       // and the summary counts the steps that needed it.
@@ -322,10 +323,10 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
       // times: contacts that keep swinging between two answers settle on their last one.
       const bool settle =
           retries >= kRetriesBeforeSettling && iterations > limit - kSettlingIterations;
-      changes = contact_->update_states(positions_, scale, settle, penetration);
+      changes = contact_->update_states(state_.positions, scale, settle, penetration);
       if (changes == 0 && scale > 1.0) {
-        ++relaxed_steps_;
-        largest_relaxation_ = std::max(largest_relaxation_, scale);
+        ++stats_.open_close_relaxed_steps;
+        stats_.largest_relaxation = std::max(stats_.largest_relaxation, scale);
       }
     }
     if (changes == 0) break;
@@ -348,54 +349,59 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
       }
     }
     if (iterations >= limit) {
-      open_close_iterations_ += iterations;
+      stats_.open_close_iterations += iterations;
       control.reject(step, "the open-close iteration did not settle in " + std::to_string(limit) +
                                " iterations");
       return false;
     }
   }
   if (contact_) {
-    open_close_iterations_ += iterations;
-    max_open_close_ = std::max<long>(max_open_close_, iterations);
+    stats_.open_close_iterations += iterations;
+    stats_.max_open_close_per_step = std::max<long>(stats_.max_open_close_per_step, iterations);
   }
   return true;
 }
 
 void Simulation::commit_step(double dt) {
   const std::size_t num_dofs = model_.X.size();
-  update_velocity(scene_.analysis, scene_.time.integrator, dt, du_, bc_.prescribed, bc_.velocity,
-                  model_.v, acceleration_);
+  update_velocity(scene_.analysis, scene_.time.integrator, dt, state_.du, bc_.prescribed,
+                  bc_.velocity, model_.v, state_.acceleration);
   if (corotational_)
-    correct_block_rotations(model_, model_.u, bc_.prescribed, du_, model_.v, acceleration_);
-  for (std::size_t d = 0; d < num_dofs; ++d) model_.u[d] += du_[d];
+    correct_block_rotations(model_, model_.u, bc_.prescribed, state_.du, model_.v,
+                            state_.acceleration);
+  for (std::size_t d = 0; d < num_dofs; ++d) model_.u[d] += state_.du[d];
   {
     ScopedTimer timer(timers_.assembly);
-    compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, f_int_,
+    compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, state_.f_int,
                            corotational_);
   }
   if (contact_) {
     ScopedTimer timer(timers_.contact);
-    for (std::size_t d = 0; d < num_dofs; ++d) positions_[d] = model_.X[d] + model_.u[d];
+    for (std::size_t d = 0; d < num_dofs; ++d) state_.positions[d] = model_.X[d] + model_.u[d];
     // The step's contact forces before the commit folds the step's slip into the shear
     // springs' anchors: after it they would count that slip twice.
-    std::fill(f_contact_.begin(), f_contact_.end(), 0.0);
-    contact_->add_springs(positions_, layout_, model_.num_elements(), {}, f_contact_);
-    contact_->commit(positions_);
+    std::fill(state_.f_contact.begin(), state_.f_contact.end(), 0.0);
+    contact_->add_springs(state_.positions, layout_, model_.num_elements(), {}, state_.f_contact);
+    contact_->commit(state_.positions);
   }
-  fragments_.forces(du_, anchor_force_);
+  fragments_.forces(state_.du, state_.restraint_force);
   // The anchors restart from zero force next step: the energy they hold now leaves the
   // balance, a loss of the method (not of the rock) that summary.json reports.
-  for (std::size_t d = 0; d < num_dofs; ++d) anchor_energy_ += 0.5 * anchor_force_[d] * du_[d];
+  for (std::size_t d = 0; d < num_dofs; ++d)
+    anchor_energy_ += 0.5 * state_.restraint_force[d] * state_.du[d];
   // The constraints' force on the body, and the work of all external forces (trapezoidal).
   double work = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) {
-    reaction_[d] =
-        bc_.prescribed[d] ? f_int_[d] + f_contact_[d] + anchor_force_[d] - f_ext_[d] : 0.0;
-    work += 0.5 * (f_ext_old_[d] + reaction_old_[d] + f_ext_[d] + reaction_[d]) * du_[d];
+    state_.reaction[d] = bc_.prescribed[d] ? state_.f_int[d] + state_.f_contact[d] +
+                                                 state_.restraint_force[d] - state_.f_ext[d]
+                                           : 0.0;
+    work += 0.5 *
+            (state_.f_ext_old[d] + state_.reaction_old[d] + state_.f_ext[d] + state_.reaction[d]) *
+            state_.du[d];
   }
   external_work_ += work;
-  std::swap(f_ext_old_, f_ext_);
-  std::swap(reaction_old_, reaction_);
+  std::swap(state_.f_ext_old, state_.f_ext);
+  std::swap(state_.reaction_old, state_.reaction);
 }
 
 void Simulation::detach_fractured_elements() {
@@ -405,12 +411,10 @@ void Simulation::detach_fractured_elements() {
     threshold[e] = damage_->detach_threshold(model_, e);
   const Detachment detachment = detach_damaged_elements(model_, threshold, detached_);
   if (detachment.detached == 0) return;
-  detached_elements_ += detachment.detached;
+  stats_.detached_elements += detachment.detached;
   // Everything built on the nodes follows the split: the step state, the constraints and
   // loads (named curves carried their element sides over), probes, colouring and contacts.
-  for (auto* field : {&acceleration_, &f_int_, &f_ext_, &f_ext_old_, &reaction_, &reaction_old_,
-                      &u_trial_, &du_, &f_contact_, &positions_, &damage_force_, &anchor_force_})
-    follow_split_nodes(detachment.node_origin, *field);
+  state_.follow_split_nodes(detachment.node_origin);
   bc_ = build_boundary_conditions(scene_, model_);
   // Without inertia a piece that fracture cut loose is held by nothing (lone elements are
   // anchored below): the specimen has failed, and a static analysis cannot follow it.
@@ -421,12 +425,12 @@ void Simulation::detach_fractured_elements() {
                     "step %ld: fracture cut loose block %d (%d elements of body '%s'), which "
                     "nothing holds in %s in a static analysis: the specimen has failed; use "
                     "analysis = \"quasi-static\" or \"dynamic\" to follow it further",
-                    steps_ + 1, free->block, free->elements, free->body.c_str(),
+                    stats_.steps + 1, free->block, free->elements, free->body.c_str(),
                     free->motion.c_str());
       throw RunFailure(buf);
     }
   reference_loads_ = build_reference_loads(scene_, model_);
-  rhs_.assign(static_cast<std::size_t>(bc_.num_equations), 0.0);
+  state_.rhs.assign(static_cast<std::size_t>(bc_.num_equations), 0.0);
   auto probes = std::make_unique<Probes>(scene_, model_);
   probes->carry_state_from(*probes_);
   probes_ = std::move(probes);
@@ -485,7 +489,7 @@ double Simulation::element_force_scale() const {
   // load or reaction on a node.
   double scale = 0.0;
   for (std::size_t d = 0; d < model_.X.size(); ++d)
-    scale = std::max({scale, std::abs(reaction_old_[d]), std::abs(f_ext_old_[d])});
+    scale = std::max({scale, std::abs(state_.reaction_old[d]), std::abs(state_.f_ext_old[d])});
   for (std::int32_t e = 0; e < model_.num_elements(); ++e) {
     const double* sigma = &model_.stress[3 * static_cast<std::size_t>(e)];
     const double largest = std::max({std::abs(sigma[0]), std::abs(sigma[1]), std::abs(sigma[2])});
@@ -508,8 +512,8 @@ EnergyBalance Simulation::energy() const {
 
 void Simulation::evaluate_probes(std::vector<double>& row) {
   row.clear();
-  // After commit_step the newest reaction sits in reaction_old_.
-  probes_->evaluate(model_, reaction_old_, row);
+  // After commit_step the newest reaction sits in state_.reaction_old.
+  probes_->evaluate(model_, state_.reaction_old, row);
 }
 
 RunResult Simulation::run(const RunOptions& options) {
@@ -528,15 +532,16 @@ RunResult Simulation::run(const RunOptions& options) {
   // Step 0: the initial state.
   const double initial_factor = load_factor(scene_.analysis, 0.0, end_time);
   for (std::size_t d = 0; d < model_.X.size(); ++d)
-    f_ext_old_[d] = initial_factor * reference_loads_[d];
-  compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, f_int_,
+    state_.f_ext_old[d] = initial_factor * reference_loads_[d];
+  compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, state_.f_int,
                          corotational_);
   // Newmark needs the acceleration that balances the initial state, a0 = M^-1 (F - f_int);
   // starting from a0 = 0 would leave a velocity error of g dt / 2 for the whole run.
   for (std::size_t d = 0; d < model_.X.size(); ++d)
-    acceleration_[d] = bc_.prescribed[d] || scene_.analysis != Analysis::dynamic
-                           ? 0.0
-                           : (f_ext_old_[d] - f_int_[d]) / model_.node_mass[d / 2];
+    state_.acceleration[d] =
+        bc_.prescribed[d] || scene_.analysis != Analysis::dynamic
+            ? 0.0
+            : (state_.f_ext_old[d] - state_.f_int[d]) / model_.node_mass[d / 2];
   std::vector<double> row;
   // The end on softening (time.stop_at_softening) watches one history column.
   const bool watch_softening = scene_.time.stop_at_softening.has_value();
@@ -570,13 +575,13 @@ RunResult Simulation::run(const RunOptions& options) {
   const long planned = std::lround(end_time / scene_.time.dt);
   try {
     while (t < end_time * (1.0 - 1e-12)) {
-      const long step = steps_ + 1;
+      const long step = stats_.steps + 1;
       double dt = std::min(control.dt(), end_time - t);
       attempt_time_ = t + dt;
       for (int retries = 0; !attempt_step(step, retries, dt,
                                           load_factor(scene_.analysis, t + dt, end_time), control);
            ++retries) {
-        ++redone_steps_;
+        ++stats_.redone_steps;
         dt = std::min(control.dt(), end_time - t);
         attempt_time_ = t + dt;
       }
@@ -595,7 +600,7 @@ RunResult Simulation::run(const RunOptions& options) {
         fracture_failure = failure;
       }
       t += dt;
-      steps_ = step;
+      stats_.steps = step;
       control.accept(true);
       const bool last = t >= end_time * (1.0 - 1e-12);
       const bool stop = record(step, t, dt, last || fracture_failure.has_value());
@@ -611,7 +616,7 @@ RunResult Simulation::run(const RunOptions& options) {
     result.reason = failure.what();
     if (outputs && !frame_written) {
       ScopedTimer timer(timers_.output);
-      outputs->frame(model_, steps_, t);  // the last committed state, for diagnosis
+      outputs->frame(model_, stats_.steps, t);  // the last committed state, for diagnosis
     }
   }
   const double wall =
@@ -636,21 +641,13 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
   s["threads"] = threads;
   s["wall_seconds"] = wall_seconds;
   s["analysis"] = analysis_name(scene_.analysis);
-  s["steps"] = steps_;
-  s["redone_steps"] = redone_steps_;
-  s["open_close_iterations"] = open_close_iterations_;
-  s["max_open_close_per_step"] = max_open_close_;
-  s["open_close_relaxed_steps"] = relaxed_steps_;
+  stats_.write(s);
   s["open_close_shear_swings_settled"] = contact_ ? contact_->shear_swings_settled() : 0;
   s["open_close_normal_swings_settled"] = contact_ ? contact_->normal_swings_settled() : 0;
-  s["open_close_largest_relaxation"] = largest_relaxation_;
-  s["damage_iterations"] = damage_iterations_;
-  s["damage_iteration_limit_hits"] = damage_limit_hits_;
   s["elements"] = model_.num_elements();
   s["nodes"] = model_.num_nodes();
   s["equations"] = bc_.num_equations;
   s["blocks"] = model_.num_blocks;
-  s["detached_elements"] = detached_elements_;
   if (damage_) {
     // METHOD.md: say which tensile onset each damageable material uses.
     nlohmann::json onset = nlohmann::json::object();

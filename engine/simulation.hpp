@@ -18,8 +18,10 @@
 #include "engine/loading/boundary_conditions.hpp"
 #include "engine/model/model.hpp"
 #include "engine/output/run_outputs.hpp"
+#include "engine/run_stats.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/solver/cholmod_solver.hpp"
+#include "engine/step_state.hpp"
 #include "engine/time/integrator.hpp"
 #include "engine/time/step_control.hpp"
 #include "engine/timers.hpp"
@@ -117,18 +119,13 @@ class Simulation {
   double factorized_mass_coefficient_ = -1.0;
   bool corotational_ = false;  // strain in co-rotated element frames (not in static analysis)
   std::unique_ptr<Probes> probes_;
-  std::unique_ptr<ContactStage> contact_;      // only for scenes with [[joint]]
-  std::unique_ptr<DamageStage> damage_;        // only for scenes with damageable materials
-  std::vector<double> base_values_;            // K + cM without contact springs
-  std::vector<double> f_contact_, positions_;  // 2 per node
-  long open_close_iterations_ = 0, max_open_close_ = 0, relaxed_steps_ = 0;
-  double largest_relaxation_ = 1.0;               // widest tolerance factor a settled step needed
+  std::unique_ptr<ContactStage> contact_;         // only for scenes with [[joint]]
+  std::unique_ptr<DamageStage> damage_;           // only for scenes with damageable materials
+  std::vector<double> base_values_;               // K + cM without contact springs
   LowRankTerms springs_added_, springs_removed_;  // contact springs switched in an iteration
-  std::vector<double> damage_force_;  // f_int at the step's result, for the damage check
-  long damage_iterations_ = 0, damage_limit_hits_ = 0, detached_elements_ = 0;
-  std::vector<std::uint8_t> detached_;    // per element
-  std::vector<double> committed_damage_;  // w at the last committed step: a redone attempt
-                                          // starts from it, not from its failed attempt's
+  std::vector<std::uint8_t> detached_;            // per element
+  std::vector<double> committed_damage_;          // w at the last committed step: a redone attempt
+                                                  // starts from it, not from its failed attempt's
   /// Where damage first appeared: the elements of the first damage pass that found any.
   struct FirstDamage {
     long step = 0;
@@ -138,13 +135,9 @@ class Simulation {
     double spread = 0.0;      // largest distance of their centroids from that mean
   };
   std::optional<FirstDamage> first_damage_, attempt_first_damage_;
-  double attempt_time_ = 0.0;           // time at the end of the step being attempted
-  FragmentRestraint fragments_;        // loose blocks held in steps without inertia
-  std::vector<double> anchor_force_;   // the restraint's force at the step's trial increment
+  double attempt_time_ = 0.0;    // time at the end of the step being attempted
+  FragmentRestraint fragments_;  // loose blocks held in steps without inertia
 
-  // Step state (2 per node unless noted).
-  std::vector<double> acceleration_, f_int_, f_ext_, f_ext_old_, reaction_, reaction_old_;
-  std::vector<double> u_trial_, du_, rhs_;  // rhs_ is per equation
   double external_work_ = 0.0;
   double damage_dissipation_ = 0.0;          // J, committed steps
   double attempt_damage_dissipation_ = 0.0;  // J, the step being attempted
@@ -164,7 +157,8 @@ class Simulation {
     nlohmann::json summary(const TimeSpec& time) const;
   };
   Softening softening_;
-  long steps_ = 0, redone_steps_ = 0;
+  StepState state_;  // the step's arrays
+  RunStats stats_;   // what the run did, for summary.json
   StageTimers timers_;
 };
 
