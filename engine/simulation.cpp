@@ -385,8 +385,8 @@ void Simulation::commit_step(double dt) {
     contact_->commit(state_.positions);
   }
   fragments_.forces(state_.du, state_.restraint_force);
-  // The anchors restart from zero force next step: the energy they hold now leaves the
-  // balance, a loss of the method (not of the rock) that summary.json reports.
+  // The restraint's springs restart from zero force next step: the energy they hold now
+  // leaves the balance, a loss of the method (not of the rock) that summary.json reports.
   for (std::size_t d = 0; d < num_dofs; ++d)
     anchor_energy_ += 0.5 * state_.restraint_force[d] * state_.du[d];
   // The constraints' force on the body, and the work of all external forces (trapezoidal).
@@ -416,8 +416,9 @@ void Simulation::detach_fractured_elements() {
   // loads (named curves carried their element sides over), probes, colouring and contacts.
   state_.follow_split_nodes(detachment.node_origin);
   bc_ = build_boundary_conditions(scene_, model_);
-  // Without inertia a piece that fracture cut loose is held by nothing (lone elements are
-  // anchored below): the specimen has failed, and a static analysis cannot follow it.
+  // Without inertia a piece that fracture cut loose is held by nothing but the weak fragment
+  // restraint (built below; enough for lone elements): the specimen has failed, and a static
+  // analysis cannot follow it.
   if (scene_.analysis == Analysis::static_)
     if (const std::optional<FreeBlock> free = find_free_block(model_, bc_, 2)) {
       char buf[320];

@@ -141,7 +141,7 @@ class Simulation {
   double external_work_ = 0.0;
   double damage_dissipation_ = 0.0;          // J, committed steps
   double attempt_damage_dissipation_ = 0.0;  // J, the step being attempted
-  double anchor_energy_ = 0.0;               // J, held by fragment anchors when their steps ended
+  double anchor_energy_ = 0.0;               // J, held by the fragment restraint when steps ended
   std::vector<double> damage_before_;        // per element, before a damage pass
 
   /// The peak of the watched history column and whether it has softened past the scene's

@@ -202,9 +202,10 @@ def large_blocks(mesh, fraction=0.01):
 
 
 def through_going_fracture(mesh):
-    """Whether the crack faces of a frame form a connected chain that touches the outer
-    boundary at two points at least a quarter of the specimen's size apart (a fracture that
-    runs from one side to the other), with the chain's element-edge count."""
+    """Whether the crack faces of a frame form a connected chain that touches two opposite
+    sides of the specimen (left and right, or bottom and top, of its reference bounding box,
+    within 1 % of its size): a fracture that runs from one side to the other, not one that
+    cuts off a corner. Returns that, with the chain's element-edge count."""
     points, _ = reference_geometry(mesh)
     tris = mesh["triangles"]
     block = np.asarray(mesh["cell_data"]["block"]).astype(np.int64)
@@ -234,6 +235,7 @@ def through_going_fracture(mesh):
 
     for a, b in crack:
         parent[find(a)] = find(b)
+    lo, hi = points.min(axis=0), points.max(axis=0)
     position = np.zeros((len(merged), 2))
     position[ids] = points
     best = (False, 0)
@@ -242,11 +244,11 @@ def through_going_fracture(mesh):
         components.setdefault(find(a), []).append((a, b))
     for edges in components.values():
         touching = sorted({n for e in edges for n in e if n in outer_nodes})
-        span = 0.0
-        if len(touching) >= 2:
-            p = position[touching]
-            span = float(np.max(np.hypot(p[:, None, 0] - p[None, :, 0], p[:, None, 1] - p[None, :, 1])))
-        through = span >= 0.25 * scale
+        p = position[touching].reshape(-1, 2)
+        near = 0.01 * scale
+        through = bool(len(p)) and any(
+            (p[:, axis] <= low + near).any() and (p[:, axis] >= high - near).any()
+            for axis, low, high in ((0, lo[0], hi[0]), (1, lo[1], hi[1])))
         if (through, len(edges)) > best:
             best = (through, len(edges))
     return best
