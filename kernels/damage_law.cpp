@@ -24,6 +24,19 @@ double tensile_damage(double eps_bar, double eps_t0, double lambda, double eta) 
   return 1.0 - lambda * eps_t0 / eps_bar;
 }
 
+double crack_band_width(double area) {
+  return std::sqrt(2.0 * area);
+}
+
+double crack_band_ultimate_strain(double gf, double h, double ft0, double young, double lambda) {
+  const double eps_t0 = ft0 / young;
+  return 1.0 + (gf / (h * ft0 * eps_t0) - 0.5) / lambda;
+}
+
+double crack_band_max_width(double gf, double ft0, double young) {
+  return 2.0 * young * gf / (ft0 * ft0);
+}
+
 bool tensile_onset(TensionOnset mode, double s1, double eps_bar, double ft0, double young) {
   return mode == TensionOnset::stress ? s1 >= ft0 : eps_bar >= ft0 / young;
 }
@@ -91,8 +104,8 @@ double damage_dissipation(const double eps[3], double young, double poisson, Pla
          (effective_modulus(young, w_old, floor) - effective_modulus(young, w_new, floor));
 }
 
-double onset_ratio(const double eps[3], const double sig[3], const DamageParams& p,
-                   PlaneKind plane, double w_old) {
+double onset_ratio(const double eps[3], const double sig[3], const DamageParams& p, PlaneKind plane,
+                   double w_old) {
   const double scale = 1.0 / std::max(1.0 - w_old, p.floor);
   const double se[3] = {sig[0] * scale, sig[1] * scale, sig[2] * scale};
   double ratio = 0.0;

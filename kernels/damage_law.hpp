@@ -56,6 +56,24 @@ double equivalent_tensile_strain(const double eps[3], double poisson, PlaneKind 
 /// eps_t0 <= eps_bar < eta eps_t0, 1 beyond. Requires eps_t0 > 0.
 double tensile_damage(double eps_bar, double eps_t0, double lambda, double eta);
 
+/// Crack-band width of a linear triangle: sqrt(2 A), the leg of the right isosceles triangle
+/// of the same area (the usual choice for constant-strain triangles, e.g. Rots 1988). It is
+/// the width of a band one element wide, per unit length of crack, to within the mesh's
+/// orientation to the crack.
+double crack_band_width(double area);
+
+/// Bazant-Oh crack band with the paper's tensile law (eq. 3): the ultimate strain coefficient
+/// eta for which an element of band width h dissipates the fracture energy gf (J/m^2) per
+/// unit crack area. Eq. (3) loads to ft0 at eps_t0, drops to the residual lambda ft0 and holds
+/// it up to eta eps_t0, so the work per unit volume to break is
+/// g = ft0 eps_t0 (1/2 + lambda (eta - 1)); setting g h = gf gives
+/// eta = 1 + (gf / (h ft0 eps_t0) - 1/2) / lambda. A result below 1 means the element is too
+/// large to dissipate only gf (h > 2 E0 gf / ft0^2, a snap-back of the element itself).
+double crack_band_ultimate_strain(double gf, double h, double ft0, double young, double lambda);
+
+/// Largest crack-band width for which crack_band_ultimate_strain is >= 1: 2 E0 gf / ft0^2.
+double crack_band_max_width(double gf, double ft0, double young);
+
 /// Tensile onset: s1 >= ft0 ("stress") or eps_bar >= ft0 / E0 ("strain").
 bool tensile_onset(TensionOnset mode, double s1, double eps_bar, double ft0, double young);
 
@@ -100,8 +118,8 @@ double damage_dissipation(const double eps[3], double young, double poisson, Pla
 /// (c1 - k c3) / fc0, on the effective stress as in evaluate_damage. A law fires exactly when
 /// its ratio is >= 1; laws that are off (strength <= 0) give 0. Used to order damage events:
 /// the most overstressed elements fail first.
-double onset_ratio(const double eps[3], const double sig[3], const DamageParams& p,
-                   PlaneKind plane, double w_old);
+double onset_ratio(const double eps[3], const double sig[3], const DamageParams& p, PlaneKind plane,
+                   double w_old);
 
 /// New damage of an element: max(w_old, w_law), w_law from the first criterion that holds
 /// (tension, then Mohr-Coulomb). sig is the element's stress under its current (damaged)

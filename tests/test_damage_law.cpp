@@ -150,6 +150,37 @@ TEST(DamageLaw, TensileDamageBranchesOfEq3) {
   EXPECT_EQ(k::tensile_damage(kEta * et0, et0, kLambda, kEta), 1.0);
 }
 
+TEST(DamageLaw, CrackBandEtaDissipatesTheFractureEnergyOverTheBandWidth) {
+  // Bazant-Oh with eq. (3): the work per unit volume to break an element, the integral of
+  // sigma = (1 - w) E0 eps from 0 to eta eps_t0, times its band width h must equal G_f. The
+  // integral is taken numerically (midpoint rule, 2e6 intervals, 1e-4 relative) over the law
+  // itself, so a wrong closed form in crack_band_ultimate_strain fails here.
+  const double gf = 5.0;
+  for (double h : {1e-4, 1e-3, 5e-3}) {
+    for (double lambda : {0.05, 0.1, 1.0}) {
+      const double eta = k::crack_band_ultimate_strain(gf, h, kFt, kE0, lambda);
+      const double et0 = kFt / kE0, end = eta * et0;
+      const int n = 2000000;
+      double work = 0.0;
+      for (int i = 0; i < n; ++i) {
+        const double e = (i + 0.5) * end / n;
+        work += (1.0 - k::tensile_damage(e, et0, lambda, eta)) * kE0 * e * end / n;
+      }
+      SCOPED_TRACE("h = " + std::to_string(h) + ", lambda = " + std::to_string(lambda));
+      EXPECT_GT(eta, 1.0);
+      expect_rel(work * h, gf, 1e-4);
+    }
+  }
+  // At the limit width 2 E0 G_f / ft0^2 the element breaks at onset (eta = 1); wider ones
+  // would need eta < 1 (the element's own snap-back).
+  const double limit = k::crack_band_max_width(gf, kFt, kE0);
+  EXPECT_DOUBLE_EQ(limit, 2 * kE0 * gf / (kFt * kFt));
+  EXPECT_NEAR(k::crack_band_ultimate_strain(gf, limit, kFt, kE0, kLambda), 1.0, 1e-12);
+  EXPECT_LT(k::crack_band_ultimate_strain(gf, 1.01 * limit, kFt, kE0, kLambda), 1.0);
+  // sqrt(2 A): a right isosceles triangle of legs a is a wide.
+  EXPECT_DOUBLE_EQ(k::crack_band_width(0.5 * 0.02 * 0.02), 0.02);
+}
+
 TEST(DamageLaw, CompressiveDamageBranchesOfEq7) {
   // Eq. (7): 0 below eps_c0, 1 - lambda eps_c0/eps_c1 from it, no ultimate strain.
   const double ec0 = 2e-3;
@@ -415,8 +446,7 @@ TEST(DamageLaw, OnsetRatioIsOneExactlyWhereALawFires) {
   }
   for (double q : {0.3 * kFc, kFc, 1.2 * kFc}) {
     const double sig[3] = {0.0, -q, 0.0}, eps[3] = {kNu * q / kE0, -q / kE0, 0.0};
-    expect_rel(k::onset_ratio(eps, sig, p, PlaneKind::stress, 0.0),
-               std::max(0.0, q / kFc), 1e-12);
+    expect_rel(k::onset_ratio(eps, sig, p, PlaneKind::stress, 0.0), std::max(0.0, q / kFc), 1e-12);
   }
   const double tau = 2e6;
   const double sig[3] = {0.0, 0.0, tau};

@@ -98,8 +98,8 @@ struct DiskSplit {
   double peak_strength = 0.0;  // P / (pi R t) at the largest platen force (Pa)
   double final_over_peak = 0.0;
   int damaged = 0;
-  double near_diameter = 0.0;           // share of damaged elements within 0.2 R of x = 0
-  std::vector<double> large_block_x;    // mean reference x of blocks > 10 % of the elements
+  double near_diameter = 0.0;         // share of damaged elements within 0.2 R of x = 0
+  std::vector<double> large_block_x;  // mean reference x of blocks > 10 % of the elements
   std::vector<std::int32_t> large_block_size;
 };
 
@@ -159,6 +159,94 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
     const double a = split.large_block_size[0], b = split.large_block_size[1];
     EXPECT_LT(std::abs(a - b), 0.25 * std::max(a, b));
     EXPECT_GE(split.near_diameter, 0.45) << split.damaged << " damaged";
+  }
+}
+
+/// The notched bar's response at one mesh size (data/notched_bar_tension.toml).
+struct BarResponse {
+  double peak = 0.0;           // largest pull (N)
+  double plateau = 0.0;        // mean pull over 5-20 um of travel, after the peak (N)
+  double break_opening = 0.0;  // travel (m) where the pull first falls below 5 % of the peak
+  double dissipated = 0.0;     // summary energy.damage_dissipation (J)
+};
+
+BarResponse run_notched_bar(const std::vector<std::string>& overrides) {
+  const auto run = test::run_data_scene("notched_bar_tension.toml", overrides, 1);
+  EXPECT_TRUE(run.result.ok) << run.result.reason;
+  BarResponse bar;
+  const auto& force = run.history.at("right.fx");
+  const auto& travel = run.history.at("right.ux");
+  const auto top = std::max_element(force.begin(), force.end());
+  bar.peak = *top;
+  int count = 0;
+  for (std::size_t i = static_cast<std::size_t>(top - force.begin()); i < force.size(); ++i) {
+    if (bar.break_opening == 0.0 && force[i] < 0.05 * bar.peak) bar.break_opening = travel[i];
+    if (travel[i] >= 5e-6 && travel[i] <= 20e-6) {
+      bar.plateau += force[i];
+      ++count;
+    }
+  }
+  bar.plateau /= std::max(count, 1);
+  bar.dissipated = run.result.summary["energy"]["damage_dissipation"].get<double>();
+  return bar;
+}
+
+TEST(CrackBand, NotchedBarPostPeakDoesNotChangeWithRefinement) {
+  // Bazant-Oh crack band (material.fracture_energy): each element's ultimate strain follows
+  // from its width h = sqrt(2 A) so that breaking it dissipates G_f per unit crack area
+  // (kernels crack_band_ultimate_strain). Homogeneous bar with round notches, 10 mm ligament,
+  // G_f = 5 J/m^2, ft = 2 MPa, lambda = 0.1, pulled 0.5 um a step, at h = 1, 0.707, 0.5 mm.
+  // Closed forms: the dissipated energy is G_f x ligament x thickness = 0.05 J, within 12 %
+  // (one crack; its band is one to two elements wide, zig-zagging on the unstructured mesh);
+  // the crack opens by G_f / (lambda ft) = 25 um on the residual plateau before it breaks,
+  // so the pull falls below 5 % of its peak at 25 um of travel, within 10 %.
+  // Refinement: the peak within 2 %, the plateau pull of the two finer meshes within 3 % of
+  // each other (the coarsest, 5 elements a half ligament, within 20 %).
+  // Measured: dissipated 0.0518, 0.0455, 0.0505 J; break at 25.0, 24.0, 24.5 um; peak 10.99,
+  // 10.96, 10.95 kN; plateau 2.56, 2.22, 2.24 kN. Without fracture_energy (ultimate_strain
+  // = 5, the paper's law) the same bar breaks within 3 um of travel and dissipates 0.0077 J.
+  const double gf = 5.0, ligament = 0.01, opening = gf / (0.1 * 2e6);
+  std::vector<BarResponse> bars;
+  for (const char* h : {"1e-3", "7.07e-4", "5e-4"}) {
+    SCOPED_TRACE(std::string("element_size ") + h);
+    bars.push_back(run_notched_bar({std::string("mesh.element_size=") + h}));
+    const BarResponse& bar = bars.back();
+    EXPECT_NEAR(bar.dissipated, gf * ligament, 0.12 * gf * ligament);
+    EXPECT_NEAR(bar.break_opening, opening, 0.1 * opening);
+    EXPECT_NEAR(bar.peak, bars[0].peak, 0.02 * bars[0].peak);
+  }
+  EXPECT_NEAR(bars[2].plateau, bars[1].plateau, 0.03 * bars[1].plateau);
+  EXPECT_NEAR(bars[0].plateau, bars[2].plateau, 0.2 * bars[2].plateau);
+
+  // The paper's law without the crack band breaks the ligament almost at once: the test
+  // above would see it.
+  std::string text = test::read_text(test::data_file("notched_bar_tension.toml"));
+  const std::string key = "fracture_energy = 5.0";
+  ASSERT_NE(text.find(key), std::string::npos);
+  text.replace(text.find(key), key.size(), "ultimate_strain = 5.0");
+  const auto brittle = test::run_scene_text(
+      text, {}, 1,
+      {{"notched_bar_tension.geo", test::read_text(test::data_file("notched_bar_tension.geo"))}});
+  ASSERT_TRUE(brittle.result.ok) << brittle.result.reason;
+  const auto& travel = brittle.history.at("right.ux");
+  EXPECT_LT(travel.back(), 0.2 * opening);
+  EXPECT_LT(brittle.result.summary["energy"]["damage_dissipation"].get<double>(),
+            0.25 * gf * ligament);
+}
+
+TEST(CrackBand, ElementsTooWideForTheirFractureEnergyAreRefused) {
+  // An element wider than 2 E0 G_f / ft0^2 would need eta < 1: it releases more than G_f h
+  // at onset alone. G_f = 0.05 J/m^2 puts the limit at 0.5 mm, under the 1 mm mesh: the run is
+  // refused before it starts (exit 2), naming the key and the element size that would do.
+  Scene scene =
+      read_scene(test::data_file("notched_bar_tension.toml"), {"material.0.fracture_energy=0.05"});
+  try {
+    Simulation sim(scene, build_scene_model(scene));
+    FAIL() << "a mesh too coarse for its crack band was accepted";
+  } catch (const InputError& error) {
+    EXPECT_EQ(error.key(), "material[0].fracture_energy");
+    EXPECT_NE(std::string(error.what()).find("element_size below"), std::string::npos)
+        << error.what();
   }
 }
 

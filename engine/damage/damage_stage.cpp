@@ -1,9 +1,13 @@
 #include "engine/damage/damage_stage.hpp"
 
+#include <cmath>
+#include <cstdio>
+
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_reduce.h>
 
 #include "engine/assembly/element_state.hpp"
+#include "engine/errors.hpp"
 
 namespace rockdd {
 
@@ -19,7 +23,43 @@ DamageStage::DamageStage(const Scene& scene, const Model& model) : plane_(plane_
     params_.push_back(p);
     damageable_.push_back(m.has_damage() ? 1 : 0);
     detach_at_.push_back(m.detach_at_damage);
+    fracture_energy_.push_back(m.fracture_energy.value_or(0.0));
   }
+  check_crack_band(scene, model);
+}
+
+void DamageStage::check_crack_band(const Scene& scene, const Model& model) const {
+  // The widest element against its own limit: heterogeneous strengths move the limit too.
+  std::int32_t worst = -1;
+  double worst_excess = 1.0;
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+    const double gf = fracture_energy_[static_cast<std::size_t>(model.element_material[e])];
+    if (gf <= 0.0) continue;
+    const double h = kernels::crack_band_width(std::abs(model.area0[e]));
+    const double limit =
+        kernels::crack_band_max_width(gf, model.tensile_strength[e], model.young[e]);
+    if (h / limit > worst_excess) {
+      worst_excess = h / limit;
+      worst = e;
+    }
+  }
+  if (worst < 0) return;
+  const auto m = static_cast<std::size_t>(model.element_material[worst]);
+  const double gf = fracture_energy_[m];
+  const double limit =
+      kernels::crack_band_max_width(gf, model.tensile_strength[worst], model.young[worst]);
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "expected every element narrower than the crack band limit 2 E0 G_f / ft0^2, "
+                "but element %d is %.4g m wide (sqrt(2 A)) against %.4g m (E0 = %.4g Pa, "
+                "ft0 = %.4g Pa, G_f = %.4g J/m^2): it would snap back on its own. Refine the "
+                "mesh (element_size below %.3g m) or raise fracture_energy",
+                static_cast<int>(worst), kernels::crack_band_width(std::abs(model.area0[worst])),
+                limit, model.young[worst], model.tensile_strength[worst], gf,
+                // An equilateral triangle of side a is sqrt(sqrt(3)/2) a wide.
+                limit / std::sqrt(std::sqrt(3.0) / 2.0));
+  throw InputError(scene.file.string(), "material[" + std::to_string(m) + "].fracture_energy",
+                   text);
 }
 
 double DamageStage::detach_threshold(const Model& model, std::int32_t e) const {
@@ -32,6 +72,11 @@ kernels::DamageParams DamageStage::element_params(const Model& model, std::int32
   p.ft0 = model.tensile_strength[e];
   p.fc0 = model.compressive_strength[e];
   p.phi = model.friction_angle[e];
+  const double gf = fracture_energy_[static_cast<std::size_t>(model.element_material[e])];
+  if (gf > 0.0) {
+    p.eta = kernels::crack_band_ultimate_strain(
+        gf, kernels::crack_band_width(std::abs(model.area0[e])), p.ft0, p.young, p.lambda);
+  }
   return p;
 }
 

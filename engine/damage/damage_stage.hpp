@@ -38,9 +38,13 @@ class DamageStage {
   /// The law parameters of element e, with its drawn modulus and strengths.
   kernels::DamageParams element_params(const Model& model, std::int32_t e) const;
 
+  /// Refuses (InputError, exit 2) a mesh with an element too wide for its crack band.
+  void check_crack_band(const Scene& scene, const Model& model) const;
+
   std::vector<kernels::DamageParams> params_;  // per material, strengths filled per element
   std::vector<std::uint8_t> damageable_;       // per material
   std::vector<double> detach_at_;              // per material
+  std::vector<double> fracture_energy_;        // per material: G_f, 0 = no crack band
   kernels::PlaneKind plane_;
   std::vector<double> ratio_;  // per element: onset ratio of an undamaged element, else 0
 };

@@ -22,7 +22,7 @@ Detachment detach_damaged_elements(Model& model, std::span<const double> thresho
   const std::int32_t num_elements = model.num_elements();
   detached.resize(static_cast<std::size_t>(num_elements), 0);
   for (std::int32_t e = 0; e < num_elements; ++e)
-    if (!detached[e] && model.damage[e] > threshold[e]) {
+    if (!detached[e] && (model.damage[e] > threshold[e] || model.damage[e] >= 1.0)) {
       detached[e] = 1;
       ++result.detached;
     }

@@ -55,11 +55,12 @@ struct MaterialSpec {
   std::optional<double> tensile_strength;
   std::optional<double> cohesion;
   std::optional<double> compressive_strength;
-  std::optional<double> friction_angle;  // deg
-  double residual = 0.1;                 // lambda
-  double ultimate_strain = 5.0;          // eta
+  std::optional<double> friction_angle;   // deg
+  double residual = 0.1;                  // lambda
+  double ultimate_strain = 5.0;           // eta
+  std::optional<double> fracture_energy;  // G_f (J/m^2): crack band, eta per element from its size
   TensionOnset tension_onset = TensionOnset::stress;
-  double detach_at_damage = 0.0;
+  double detach_at_damage = 0.0;           // 1: only once fully broken (w = 1)
   std::optional<double> homogeneity;       // Weibull m
   std::vector<std::string> heterogeneous;  // "young", "tensile_strength", ...
   std::uint64_t seed = 0;
@@ -117,9 +118,9 @@ struct ProbeSpec {
 /// [fracture]: the numerical devices of damage and fracture (docs/method-choices.md,
 /// "Damage events" and "Fragment restraint"); docs/convergence.md measures each of them.
 struct FractureSpec {
-  double damage_band = 0.005;      // a damage pass starts damage only in elements within this
-                                   // fraction of the most overstressed one's onset ratio
-  int max_damage_passes = 500;     // damage passes per step before the step goes on regardless
+  double damage_band = 0.005;        // a damage pass starts damage only in elements within this
+                                     // fraction of the most overstressed one's onset ratio
+  int max_damage_passes = 500;       // damage passes per step before the step goes on regardless
   double fragment_stiffness = 1e-6;  // spring per corner, x E0 t, on blocks no boundary holds,
                                      // in steps without inertia
 };

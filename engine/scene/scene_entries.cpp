@@ -57,8 +57,32 @@ void read_damage(TableReader& t, MaterialSpec& m) {
     return used ? t.number_or(key, fallback, range) : t.number(key, range).value_or(fallback);
   };
   m.residual = number("residual", 0.1, between(0, true, 1, true));
-  m.ultimate_strain = number("ultimate_strain", 5.0, above(1, true));
-  m.detach_at_damage = number("detach_at_damage", 0.0, between(0, true, 1, false));
+  m.fracture_energy = t.number("fracture_energy", above(0));
+  if (m.fracture_energy) {
+    if (!m.tensile_strength) {
+      t.fail("fracture_energy",
+             "expected tensile_strength with fracture_energy (the crack band regularises the "
+             "tensile law), got nothing");
+    }
+    if (t.has("ultimate_strain")) {
+      t.fail("ultimate_strain",
+             "expected ultimate_strain or fracture_energy, not both (with fracture_energy each "
+             "element's ultimate strain follows from its size)");
+    }
+    // The element must stay in the continuum until it has dissipated its share of gf: an
+    // element detached at onset would leave the rest to the crack joint.
+    m.detach_at_damage = t.number_or("detach_at_damage", 1.0, between(0, true, 1, true));
+    if (m.detach_at_damage != 1.0) {
+      t.fail("detach_at_damage",
+             "expected 1 (detach once fully broken) with fracture_energy, got " +
+                 std::to_string(m.detach_at_damage) +
+                 " (an element that detaches earlier leaves part of its fracture energy "
+                 "undissipated)");
+    }
+  } else {
+    m.ultimate_strain = number("ultimate_strain", 5.0, above(1, true));
+    m.detach_at_damage = number("detach_at_damage", 0.0, between(0, true, 1, true));
+  }
   const auto onset = used ? t.choice_or("tension_onset", {"stress", "strain"}, "stress")
                           : t.choice("tension_onset", {"stress", "strain"}).value_or("stress");
   m.tension_onset = onset == "strain" ? TensionOnset::strain : TensionOnset::stress;
@@ -93,8 +117,8 @@ void read_heterogeneity(TableReader& t, MaterialSpec& m) {
 MaterialSpec read_material(TableReader& t, PlaneMode plane) {
   t.allow_only({"body", "density", "young", "poisson", "tensile_strength", "cohesion",
                 "compressive_strength", "friction_angle", "residual", "ultimate_strain",
-                "tension_onset", "detach_at_damage", "homogeneity", "heterogeneous", "seed",
-                "weibull_size_scaling"});
+                "fracture_energy", "tension_onset", "detach_at_damage", "homogeneity",
+                "heterogeneous", "seed", "weibull_size_scaling"});
   MaterialSpec m;
   m.body = t.string("body").value_or(std::string(1, '*'));  // "*": every surface
   if (!t.has("body")) t.record_default("body", m.body);
