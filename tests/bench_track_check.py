@@ -12,8 +12,15 @@
    exactly those two "slower"; x0.6 on a third must give exit 0 and exactly it "faster".
    The doctored copies are compared with the run they came from, so the check does not
    depend on the machine's noise beyond the spread inside one run (less than 1.5x).
-5. A benchmark in one run only is listed, not failed; a missing folder and two runs with no
+5. Two synthetic runs pin the rule down: +3.4 % with p = 0.008 is "same" (under the
+   threshold), +50 % of the median with overlapping samples is "same" (not significant),
+   +9.8 % fully separated is "slower"; times in us compare with times in ns; aggregate rows
+   (given absurd values here) are not samples.
+6. A benchmark in one run only is listed, not failed; a missing folder and two runs with no
    benchmark in common exit 2; `plot` draws the store.
+7. With --rockdd and valgrind installed: `instructions` of cantilever model I twice; the
+   second, against a baseline doctored to 1/1.1 of the first count, must exit 1, and the two
+   counts must agree within 1e-4 (measured: within 2e-6).
 Exit status 0 when every check holds, 1 otherwise (each failure printed).
 """
 
@@ -117,12 +124,82 @@ def doctored(args, source, name, factors, drop=(), rename=False):
     return folder
 
 
+def check_instructions(args, here):
+    if not shutil.which("valgrind"):
+        print("skip  instructions: valgrind is not installed")
+        return
+    scene = os.path.join(os.path.dirname(HERE), "data", "cantilever_model_1.toml")
+    common = ["instructions", "--scene", scene, "--rockdd", args.rockdd, "--store", args.store]
+    rc, out = tool(args, *common, "--name", "counted")
+    print(out, end="")
+    stored = os.path.join(here, "counted", "instructions-cantilever_model_1.json")
+    try:
+        with open(stored) as f:
+            record = json.load(f)
+    except (OSError, ValueError) as e:
+        check(False, f"instructions stored a count ({rc}: {e})")
+        return
+    first = record["instructions"]
+    check(rc == 0 and first > 1_000_000, f"instructions exits 0 and counts {first:,} (> 1 M)")
+    record["instructions"] = int(first / 1.1)
+    doctored = os.path.join(args.work, "baseline-count.json")
+    with open(doctored, "w") as f:
+        json.dump(record, f)
+    rc, out = tool(args, *common, "--name", "recounted", "--baseline", doctored)
+    print(out, end="")
+    check(rc == 1 and "-> more" in out, f"10 % more than the baseline: exit 1 (got {rc})")
+    try:
+        with open(os.path.join(here, "recounted", "instructions-cantilever_model_1.json")) as f:
+            second = json.load(f)["instructions"]
+    except (OSError, ValueError, KeyError):
+        second = 0
+    check(abs(second / first - 1) < 1e-4, f"the count repeats: {first:,} and {second:,}")
+
+
+# name: (baseline repetitions in ns, contender repetitions, contender unit, verdict)
+SYNTHETIC = {
+    "BM_SmallButSure": ([100, 101, 102, 103, 104], [104.5, 105, 105.5, 106, 106.5], "ns", "same"),
+    "BM_LargeButUnsure": ([100, 101, 102, 103, 104], [100, 101, 153, 154, 155], "ns", "same"),
+    "BM_Slower": ([100, 101, 102, 103, 104], [110, 111, 112, 113, 114], "ns", "slower"),
+    "BM_UnitChange": ([1e5, 1.01e5, 1.02e5, 1.03e5, 1.04e5], [100, 101, 102, 103, 104], "us",
+                      "same"),
+}
+
+
+def write_synthetic(folder, side):
+    os.makedirs(folder)
+    rows = []
+    for name, (base, cont, unit, _) in SYNTHETIC.items():
+        times, unit = (base, "ns") if side == 0 else (cont, unit)
+        for i, t in enumerate(times):
+            rows.append({"name": name, "run_name": name, "run_type": "iteration",
+                         "repetition_index": i, "real_time": t, "cpu_time": t,
+                         "time_unit": unit})
+        # Aggregates are summaries of the rows above, never samples of their own.
+        rows.append({"name": name + "_median", "run_name": name, "run_type": "aggregate",
+                     "aggregate_name": "median", "real_time": 1e9, "cpu_time": 1e9,
+                     "time_unit": unit})
+    with open(os.path.join(folder, "bench_synthetic.json"), "w") as f:
+        json.dump({"context": {}, "benchmarks": rows}, f)
+
+
+def check_synthetic(args, here):
+    folders = [os.path.join(here, f"synthetic-{side}") for side in "ab"]
+    for side, folder in enumerate(folders):
+        write_synthetic(folder, side)
+    rc, out, v = compare(args, *folders)
+    print(out, end="")
+    expected = {name: verdict for name, (_, _, _, verdict) in SYNTHETIC.items()}
+    check(rc == 1 and v == expected, f"synthetic runs: exit 1 and {expected} (got {rc}, {v})")
+
+
 def main():
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--build", required=True, help="build folder whose bin/ has bench_kernels")
     p.add_argument("--tool", default=os.path.join(os.path.dirname(HERE), "tools",
                                                   "bench-track"))
     p.add_argument("--work", default="bench_track", help="scratch folder (emptied first)")
+    p.add_argument("--rockdd", help="rockdd program: also check `instructions` (valgrind)")
     args = p.parse_args()
     args.tool = os.path.abspath(args.tool)
     shutil.rmtree(args.work, ignore_errors=True)
@@ -180,6 +257,8 @@ def main():
           and all(s == "same" for n, s in v.items() if n not in SPED_UP),
           f"exactly {sorted(SPED_UP)} faster ({v})")
 
+    check_synthetic(args, here)
+
     partial = doctored(args, first, "partial", {}, drop={"BM_WeibullDraw"})
     rc, out, v = compare(args, first, partial)
     check(rc == 0 and len(v) == 2 and "only in the baseline" in out
@@ -198,6 +277,9 @@ def main():
                    "bench_kernels/")
     check(rc == 0 and os.path.getsize(png) > 1000 if os.path.exists(png) else False,
           f"plot draws the store ({out.strip()})")
+
+    if args.rockdd:
+        check_instructions(args, here)
 
     print(f"\n{len(failures)} of the checks failed" if failures else "\nall checks hold")
     return 1 if failures else 0
