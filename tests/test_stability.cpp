@@ -169,7 +169,8 @@ TEST(Stability, NearlyIncompressiblePlaneStrainBlockMatchesTheClosedForm) {
   // (1 - 2 nu = 2e-4: D's volumetric entries are 2,500 E), rollers on the left, pulled by
   // sigma = F / (h t) on the right. Uniaxial stress in plane strain (eps_zz = 0):
   //   u_x = (1 - nu^2) sigma x / E,   u_y = -nu (1 + nu) sigma y / E,
-  // exact for CST on any mesh (patch test). Measured: every node within 3e-11 of the largest.
+  // exact for CST on any mesh (patch test). Measured: every node within 1e-10 of the largest
+  // displacement (PatchTest.NearlyIncompressiblePlaneStrainStaysFinite checks the stress).
   const double E = 40e9, nu = 0.4999, sigma = 2e6;
   const std::string scene = R"(
 [scene]
@@ -501,15 +502,9 @@ TEST(Stability, ImpactAt100MetresPerSecondWithNewmarkStaysBounded) {
 
 // --- Damage --------------------------------------------------------------------------------
 
-TEST(Stability, EveryElementFullyDamagedInOneStep) {
-  // Required: finite numbers, no energy created, and every element at w = 1 (or a clear
-  // error). Model I's beam pulled in one static step to 100 x its tensile onset strain
-  // (eps = 0.02 > eta eps_t0 = 1e-3), by the displacement of its right end, then by a force of
-  // 100 x its tensile strength. Measured: every element damages fully in one pass and
-  // detaches (32 blocks); under the imposed displacement the right end carries 3 N (the
-  // stiffness floor 1e-6 E0); under the force the stiffness floor lets it stretch 800 m
-  // (small strain, as a static analysis is), finite.
-  const std::string scene = R"(
+/// Model I's beam (tension damage, ft = 2 MPa, E = 10 GPa) held on the left, in one static step;
+/// the loading of its right end is the caller's.
+constexpr const char* kBeamToBreak = R"(
 [scene]
 name = "all-damaged"
 [time]
@@ -537,10 +532,19 @@ fields = ["fx", "ux"]
 [output]
 every = 0
 )";
+
+TEST(Stability, EveryElementFullyDamagedInOneStep) {
+  // Required: finite numbers, no energy created, and every element at w = 1 (or a clear
+  // error). Model I's beam pulled in one static step to 100 x its tensile onset strain
+  // (eps = 0.02 > eta eps_t0 = 1e-3), by the displacement of its right end, then by a force of
+  // 100 x its tensile strength. Measured: every element damages fully in one pass and
+  // detaches (32 blocks); under the imposed displacement the right end carries 3 N (the
+  // stiffness floor 1e-6 E0); under the force the stiffness floor lets it stretch 800 m
+  // (small strain, as a static analysis is), finite.
   for (const std::string loading : {"[[boundary]]\non = \"right\"\nvelocity_x = 8e-4\n",
                                     "[[load]]\non = \"right\"\nforce = [2e6, 0.0]\n"}) {
     SCOPED_TRACE(loading);
-    const auto run = test::run_scene_text(scene + loading);
+    const auto run = test::run_scene_text(kBeamToBreak + loading);
     ASSERT_TRUE(run.result.ok) << run.result.reason;
     expect_finite(run);
     for (std::int32_t e = 0; e < run.model.num_elements(); ++e)
@@ -551,6 +555,24 @@ every = 0
     const auto& h = run.history;
     EXPECT_LE(h.at("energy.strain").back(), (1 + 1e-9) * h.at("energy.external_work").back());
   }
+}
+
+TEST(Stability, EveryElementFullyDamagedInOneStepBalancesItsEnergy) {
+  // Required: bounded energy, strain + dissipated = work to round-off in a static step (the
+  // balance is exact before fracture, docs/method-choices.md "Energy balance"). Measured, the
+  // imposed displacement: work 8e-4 J, dissipated 800 J. The damage pass releases
+  // 1/2 (w - w') E0 eps : eps at the trial strain eps = 0.02, energy the undamaged beam would
+  // hold there; but the step's work is counted on the forces after damage, so the beam never
+  // held it. Per element the release should not exceed what the element held plus the work
+  // done on it in the step.
+  GTEST_SKIP() << "bug: damage dissipation counted at a pass's trial strain exceeds the work "
+                  "of a step that jumps far past onset (docs/stability.md, 'Damage in one step')";
+  const auto run = test::run_scene_text(std::string(kBeamToBreak) +
+                                        "[[boundary]]\non = \"right\"\nvelocity_x = 8e-4\n");
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& h = run.history;
+  EXPECT_NEAR(h.at("energy.strain").back() + h.at("energy.dissipated").back(),
+              h.at("energy.external_work").back(), 1e-6 * h.at("energy.external_work").back());
 }
 
 }  // namespace
