@@ -4,8 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
-#include <nlohmann/json.hpp>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <regex>
 #include <sstream>
 
@@ -14,22 +14,8 @@
 namespace rockdd {
 namespace {
 
-struct Invocation {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr together
-};
-
-Invocation rockdd_cli(const std::string& args, const std::filesystem::path& cwd) {
-  const std::string command =
-      "cd '" + cwd.string() + "' && '" + ROCKDD_BINARY + "' " + args + " 2>&1";
-  Invocation inv;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) inv.output += buffer.data();
-  const int status = pclose(pipe);
-  inv.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return inv;
-}
+using test::Invocation;
+using test::rockdd_cli;
 
 const std::filesystem::path kSource = ROCKDD_SOURCE_DIR;
 
@@ -126,7 +112,8 @@ TEST(CommandLine, EveryMalformedSceneExitsTwoNamingFileAndKeyAndWritesNothing) {
        it != std::sregex_iterator(); ++it) {
     const std::string file = (*it)[1], key = (*it)[2];
     test::TempDir tmp;
-    const auto inv = rockdd_cli("run '" + (bad / file).string() + "' --out out", tmp.path());
+    // A time limit: a scene that makes the engine hang (issue 13) fails here with 124.
+    const auto inv = rockdd_cli("run '" + (bad / file).string() + "' --out out", tmp.path(), 60);
     EXPECT_EQ(inv.exit_code, 2) << file << ": " << inv.output;
     EXPECT_NE(inv.output.find(file), std::string::npos) << file << ": " << inv.output;
     EXPECT_NE(inv.output.find(key), std::string::npos)
@@ -178,8 +165,7 @@ TEST(CommandLine, MonteCarloRunsOneRealizationPerSeedAndTabulatesThem) {
   const std::string scene = (kSource / "data/uniaxial_compression.toml").string();
   const std::string mesh = " --set 'mesh.divisions=[15, 30]'";
   const auto mc = rockdd_cli(
-      "mc '" + scene + "' --realizations 3 --first-seed 7 --threads 2 --out mc" + mesh,
-      tmp.path());
+      "mc '" + scene + "' --realizations 3 --first-seed 7 --threads 2 --out mc" + mesh, tmp.path());
   ASSERT_EQ(mc.exit_code, 0) << mc.output;
   const auto dir = tmp.path() / "mc" / "uniaxial-compression";
   const auto table = read_text_csv(dir / "mc.csv");

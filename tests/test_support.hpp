@@ -1,6 +1,10 @@
 #pragma once
 // Helpers shared by the engine tests: scenes from TOML text, temporary folders, CSV reading.
+#include <sys/wait.h>
+
+#include <array>
 #include <chrono>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -102,6 +106,29 @@ inline std::string rectangle_geo(int id, double x0, double y0, double x1, double
 /// A scene file from data/.
 inline std::filesystem::path data_file(const std::string& name) {
   return std::filesystem::path(ROCKDD_SOURCE_DIR) / "data" / name;
+}
+
+/// What the rockdd command line printed (stdout and stderr together) and its exit status.
+struct Invocation {
+  int exit_code = -1;
+  std::string output;
+};
+
+/// Runs `rockdd ARGS` in `cwd`; with `timeout_s` > 0 it is killed after that many seconds
+/// (exit status 124), so that a hang fails the test instead of stalling the suite.
+inline Invocation rockdd_cli(const std::string& args, const std::filesystem::path& cwd,
+                             int timeout_s = 0) {
+  const std::string limit =
+      timeout_s > 0 ? "timeout -k 5 " + std::to_string(timeout_s) + " " : std::string();
+  const std::string command =
+      "cd '" + cwd.string() + "' && " + limit + "'" + ROCKDD_BINARY + "' " + args + " 2>&1";
+  Invocation inv;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) inv.output += buffer.data();
+  const int status = pclose(pipe);
+  inv.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return inv;
 }
 
 /// A CSV file as named columns of numbers.

@@ -7,27 +7,28 @@
 #include <string>
 #include <vector>
 
+#include "engine/scene/geometry_limits.hpp"
+#include "engine/scene/mesh_budget.hpp"
+
 namespace rockdd {
 
 namespace {
 
 namespace geo = gmsh::model::geo;
 
-// Gmsh needs minutes and gigabytes beyond this; a scene asking for more has a typo in its size.
-constexpr double kMostTriangles = 5e7;
-
-void require_positive(double value, const std::string& what, const MeshSource& source) {
-  if (!(value > 0.0) || !std::isfinite(value)) source.fail(what + " must be positive");
+/// Library callers may hand over a MeshSpec the scene reader never saw: the same limits on
+/// lengths (geometry_limits) apply here.
+void require_length(double value, const std::string& what, const MeshSource& source) {
+  if (!length_in_range(value))
+    source.fail(what + " must be a length " + length_range_text() + ", got " +
+                format_number(value));
 }
 
-/// Refuses sizes that would make an absurd number of triangles: a Frontal-Delaunay mesh of
-/// size h has about area / (sqrt(3)/4 h^2) triangles.
-void require_sensible_count(double area, double size, const MeshSource& source) {
-  const double estimate = area / (std::sqrt(3.0) / 4.0 * size * size);
-  if (estimate > kMostTriangles)
-    source.fail("element_size " + format_number(size) + " would give about " +
-                std::to_string(static_cast<long long>(estimate)) + " triangles (at most " +
-                std::to_string(static_cast<long long>(kMostTriangles)) + ")");
+/// Refuses a count of triangles that would not fit in memory (mesh_budget), before meshing.
+void require_within_budget(const MeshSpec& spec, const MeshSource& source) {
+  const std::string problem =
+      mesh_budget_problem(estimated_triangles(spec).value_or(0.0), available_memory_bytes());
+  if (!problem.empty()) source.fail(problem);
 }
 
 void name_group(int dim, const std::vector<int>& tags, const std::string& name) {
@@ -43,20 +44,20 @@ void cap_mesh_size(double size) {
 
 void add_rectangle(const MeshSpec& spec, const MeshSource& source) {
   const MeshSource size_key{source.where, "mesh.size"};
-  require_positive(spec.size[0], "the width", size_key);
-  require_positive(spec.size[1], "the height", size_key);
+  require_length(spec.size[0], "the width", size_key);
+  require_length(spec.size[1], "the height", size_key);
   const auto [x0, y0] = spec.origin;
   const double x1 = x0 + spec.size[0], y1 = y0 + spec.size[1];
   const double size = spec.element_size.value_or(0.0);  // 0: Gmsh ignores point sizes
   if (spec.element_size) {
-    require_positive(size, "element_size", {source.where, "mesh.element_size"});
-    require_sensible_count(spec.size[0] * spec.size[1], size, {source.where, "mesh.element_size"});
+    const MeshSource size_cap{source.where, "mesh.element_size"};
+    require_length(size, "element_size", size_cap);
+    require_within_budget(spec, size_cap);
   } else {
     const MeshSource divisions_key{source.where, "mesh.divisions"};
     if (spec.divisions[0] < 1 || spec.divisions[1] < 1)
       divisions_key.fail("divisions must be at least 1 in each direction");
-    if (2.0 * spec.divisions[0] * spec.divisions[1] > kMostTriangles)
-      divisions_key.fail("divisions would give more than 5e7 triangles");
+    require_within_budget(spec, divisions_key);
   }
   const int bottom_left = geo::addPoint(x0, y0, 0.0, size);
   const int bottom_right = geo::addPoint(x1, y0, 0.0, size);
@@ -92,17 +93,17 @@ void add_rectangle(const MeshSpec& spec, const MeshSource& source) {
 
 void add_disk(const MeshSpec& spec, const MeshSource& source) {
   const double r = spec.radius;
-  require_positive(r, "radius", {source.where, "mesh.radius"});
+  require_length(r, "radius", {source.where, "mesh.radius"});
   const MeshSource size_key{source.where, "mesh.element_size"};
   if (!spec.element_size) size_key.fail("element_size is required for shape = \"disk\"");
   const double size = *spec.element_size;
-  require_positive(size, "element_size", size_key);
+  require_length(size, "element_size", size_key);
   const double alpha_deg = spec.flat_half_angle_deg;
   if (!(alpha_deg >= 0.0 && alpha_deg < 90.0))
     MeshSource{source.where, "mesh.flat_half_angle_deg"}.fail(
         "flat_half_angle_deg must be in [0, 90), got " + format_number(alpha_deg));
   const double alpha = alpha_deg * std::numbers::pi / 180.0;
-  require_sensible_count(std::numbers::pi * r * r, size, size_key);
+  require_within_budget(spec, size_key);
 
   // Flat ends at y = ±R cos(alpha), from x = -R sin(alpha) to R sin(alpha); alpha = 0 leaves a
   // plain circle whose top and bottom are (0, ±R). Every named point is a curve end or

@@ -1,5 +1,7 @@
 #include <gmsh.h>
 
+#include <algorithm>
+#include <cmath>
 #include <exception>
 #include <filesystem>
 #include <functional>
@@ -13,6 +15,8 @@
 #include "engine/mesh/gmsh_session.hpp"
 #include "engine/mesh/mesh.hpp"
 #include "engine/mesh/validate_mesh.hpp"
+#include "engine/scene/geometry_limits.hpp"
+#include "engine/scene/mesh_budget.hpp"
 
 namespace rockdd {
 
@@ -73,6 +77,32 @@ void checked_gmsh_step(const MeshSource& source, const std::string& doing,
   source.fail(doing + ": " + error);
 }
 
+/// Checks a .geo's model before Gmsh meshes it. Coordinates the engine cannot compute with
+/// (geometry_limits) send Gmsh's 1D mesher into endless recursion: a square of side 1e308 has
+/// an infinite diagonal, its size field is inf / inf = NaN, and the adaptive integration of
+/// each curve subdivides for ever, growing to GBs. A size cap far below the extent would mesh
+/// for ever too: the outer boundary is at least twice the box's longer side long, so it has at
+/// least 2 max(w, h) / h segments and the triangulation at least that many triangles less 2.
+void check_geo_model(const MeshSpec& spec, const MeshSource& source) {
+  double box[6] = {NAN, NAN, NAN, NAN, NAN, NAN};
+  const std::string error = first_gmsh_error(
+      [&] { gmsh::model::getBoundingBox(-1, -1, box[0], box[1], box[2], box[3], box[4], box[5]); });
+  if (!error.empty() || !(box[0] <= box[3])) return;  // an empty model: meshing says so
+  for (const double x : box)
+    if (!coordinate_in_range(x))
+      source.fail("expected a model with coordinates in [-" + format_number(kLongestLength) + ", " +
+                  format_number(kLongestLength) + "] m, got one from " +
+                  point_text(box[0], box[1]) + " to " + point_text(box[3], box[4]));
+  double file_cap = 0.0;
+  gmsh::option::getNumber("Mesh.MeshSizeMax", file_cap);
+  const double cap = std::min(spec.element_size.value_or(file_cap), file_cap);
+  const double segments = 2.0 * std::max(box[3] - box[0], box[4] - box[1]) / cap;
+  const std::string problem =
+      mesh_budget_problem(std::max(segments - 2.0, 0.0), available_memory_bytes(), true);
+  if (!problem.empty())
+    (spec.element_size ? MeshSource{source.where, "mesh.element_size"} : source).fail(problem);
+}
+
 /// Fills the current Gmsh model with the 2D mesh `spec` describes.
 void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
   auto open = [&] {
@@ -90,6 +120,7 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
       open();
       // Set after reading so that it overrides the file's own Mesh.MeshSizeMax.
       if (spec.element_size) gmsh::option::setNumber("Mesh.MeshSizeMax", *spec.element_size);
+      check_geo_model(spec, source);
       generate("the file");
       return;
     case MeshSpec::Kind::msh:
@@ -116,6 +147,11 @@ Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file) {
     make_gmsh_mesh(spec, source);
     gmsh_step(source, "Gmsh could not give its mesh", [&] { raw = read_gmsh_model(source); });
   }
+  // A file's triangle count is known only now: refuse, before the model and the solver take
+  // memory, a mesh whose run would not fit (built-in shapes were estimated before meshing).
+  const std::string problem =
+      mesh_budget_problem(static_cast<double>(raw.mesh.num_elements()), available_memory_bytes());
+  if (!problem.empty()) source.fail(problem);
   TaggedMesh mesh = finish_mesh(raw, source);
   validate_mesh(mesh.mesh, source, mesh.element_tags);
   return std::move(mesh.mesh);

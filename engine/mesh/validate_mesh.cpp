@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "engine/scene/geometry_limits.hpp"
+
 namespace rockdd {
 
 namespace {
@@ -40,9 +42,14 @@ void check_sizes(const Mesh& mesh, const MeshSource& source) {
 
 void check_nodes(const Mesh& mesh, const MeshSource& source, const ElementNames& name) {
   const auto num_nodes = static_cast<std::int64_t>(mesh.num_nodes());
-  for (std::size_t n = 0; n < mesh.xy.size(); ++n)
+  for (std::size_t n = 0; n < mesh.xy.size(); ++n) {
     if (!std::isfinite(mesh.xy[n]))
       source.fail("node " + std::to_string(n / 2) + " has a coordinate that is not finite");
+    if (!coordinate_in_range(mesh.xy[n]))
+      source.fail("expected node coordinates in [-" + format_number(kLongestLength) + ", " +
+                  format_number(kLongestLength) + "] m, got node " + std::to_string(n / 2) +
+                  " at " + point_text(mesh.xy[n - n % 2], mesh.xy[n - n % 2 + 1]));
+  }
   std::vector<char> used(mesh.num_nodes(), 0);
   for (std::size_t e = 0; e < mesh.num_elements(); ++e)
     for (int k = 0; k < 3; ++k) {
@@ -74,6 +81,32 @@ double squared_diagonal(const Mesh& mesh) {
     hi[i % 2] = std::max(hi[i % 2], mesh.xy[i]);
   }
   return (hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]);
+}
+
+/// A mesh smaller than kShortestLength has areas that underflow: the relative zero-area test
+/// below would compare 0 with 0 and pass. (Its largest extent is bounded by check_nodes.)
+void check_extent(const Mesh& mesh, const MeshSource& source) {
+  const double diagonal = std::sqrt(squared_diagonal(mesh));
+  if (!(diagonal >= kShortestLength))
+    source.fail("expected a mesh whose extent (bounding-box diagonal) is at least " +
+                format_number(kShortestLength) + " m, got " + format_number(diagonal) + " m");
+}
+
+/// Each element's nodes within kMostElementSizesFromOrigin of its longest side from the
+/// origin (geometry_limits): farther, rounding of the positions swamps its strains.
+void check_precision(const Mesh& mesh, const MeshSource& source, const ElementNames& name) {
+  for (std::size_t e = 0; e < mesh.num_elements(); ++e) {
+    double farthest = 0.0, longest = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t a = mesh.triangles[3 * e + k], b = mesh.triangles[3 * e + (k + 1) % 3];
+      farthest = std::max({farthest, std::abs(mesh.xy[2 * a]), std::abs(mesh.xy[2 * a + 1])});
+      longest = std::max(longest, std::hypot(mesh.xy[2 * b] - mesh.xy[2 * a],
+                                             mesh.xy[2 * b + 1] - mesh.xy[2 * a + 1]));
+    }
+    if (!keeps_precision(farthest, longest))
+      source.fail("expected " + precision_expectation() + ", got " + name(e) + " of size " +
+                  format_number(longest) + " m with " + nodes_text(mesh, e));
+  }
 }
 
 /// A triangle of area below 1e-12 × (bounding-box diagonal)^2 is degenerate: its stiffness
@@ -131,7 +164,9 @@ void validate_mesh(const Mesh& mesh, const MeshSource& source,
   check_sizes(mesh, source);
   check_nodes(mesh, source, name);
   check_surfaces(mesh, source, name);
+  check_extent(mesh, source);
   check_areas(mesh, source, name);
+  check_precision(mesh, source, name);
   check_duplicates(mesh, source, name);
   check_groups(mesh, source);
 }

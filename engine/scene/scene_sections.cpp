@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <climits>
+#include <cmath>
 #include <fstream>
 #include <string>
 #include <vector>
 
 #include "engine/errors.hpp"
+#include "engine/scene/geometry_limits.hpp"
+#include "engine/scene/mesh_budget.hpp"
 
 namespace rockdd {
 namespace {
@@ -67,14 +70,18 @@ void refuse_keys(const TableReader& table, std::initializer_list<std::string_vie
   }
 }
 
-/// [x, y] with both components > 0.
-Vec2 positive_pair(const TableReader& table, std::string_view key) {
+/// A length in m the kernels can compute with (geometry_limits): finite, in [1e-50, 1e50].
+Range length_range() {
+  return between(kShortestLength, true, kLongestLength, true);
+}
+
+/// [x, y], both lengths in length_range().
+Vec2 length_pair(const TableReader& table, std::string_view key) {
+  const std::string expected = "expected an array of 2 numbers " + length_range_text();
   const auto pair = table.vec2(key);
-  if (!pair)
-    table.fail(key, "expected an array of 2 numbers > 0, got nothing (the key is required)");
-  if ((*pair)[0] <= 0 || (*pair)[1] <= 0) {
-    table.fail(key, "expected an array of 2 numbers > 0, got " + describe(*table.find(key)));
-  }
+  if (!pair) table.fail(key, expected + ", got nothing (the key is required)");
+  if (!length_in_range((*pair)[0]) || !length_in_range((*pair)[1]))
+    table.fail(key, expected + ", got " + describe(*table.find(key)));
   return *pair;
 }
 
@@ -93,7 +100,13 @@ std::array<int, 2> divisions(const TableReader& table, std::string_view key) {
 }
 
 Vec2 origin_or_default(TableReader& table) {
-  if (auto origin = table.vec2("origin")) return *origin;
+  if (auto origin = table.vec2("origin")) {
+    if (!coordinate_in_range((*origin)[0]) || !coordinate_in_range((*origin)[1]))
+      table.fail("origin", "expected an array of 2 numbers in [-" + format_number(kLongestLength) +
+                               ", " + format_number(kLongestLength) + "] m, got " +
+                               describe(*table.find("origin")));
+    return *origin;
+  }
   table.record_default("origin", "[0, 0]");
   return {0.0, 0.0};
 }
@@ -101,7 +114,7 @@ Vec2 origin_or_default(TableReader& table) {
 void read_rectangle(TableReader& table, MeshSpec& mesh) {
   refuse_keys(table, {"radius", "flat_half_angle_deg"}, "shape = \"rectangle\"");
   mesh.kind = MeshSpec::Kind::rectangle;
-  mesh.size = positive_pair(table, "size");
+  mesh.size = length_pair(table, "size");
   mesh.origin = origin_or_default(table);
   if (table.has("divisions") && mesh.element_size) {
     table.fail("divisions", "expected divisions or element_size for a rectangle, not both");
@@ -116,7 +129,7 @@ void read_rectangle(TableReader& table, MeshSpec& mesh) {
 void read_disk(TableReader& table, MeshSpec& mesh) {
   refuse_keys(table, {"size", "divisions"}, "shape = \"disk\"");
   mesh.kind = MeshSpec::Kind::disk;
-  mesh.radius = table.required_number("radius", above(0));
+  mesh.radius = table.required_number("radius", length_range());
   mesh.flat_half_angle_deg =
       table.number_or("flat_half_angle_deg", 0.0, between(0, true, 90, false));
   mesh.origin = origin_or_default(table);
@@ -124,6 +137,45 @@ void read_disk(TableReader& table, MeshSpec& mesh) {
     table.fail("element_size",
                "expected a number > 0 for a disk, got nothing (the key is required)");
   }
+}
+
+/// The key that sets a built-in shape's element count: what a message about it must name.
+std::string_view count_key(const MeshSpec& mesh) {
+  return mesh.element_size ? "element_size" : "divisions";
+}
+
+/// Refuses, before any meshing, a built-in shape whose triangles would not fit in memory
+/// (or exceed kMostTriangles), with the estimate and the memory available in the message.
+void check_mesh_budget(const TableReader& table, const MeshSpec& mesh) {
+  const std::optional<double> triangles = estimated_triangles(mesh);
+  if (!triangles) return;
+  const std::string problem = mesh_budget_problem(*triangles, available_memory_bytes());
+  if (!problem.empty()) table.fail(count_key(mesh), problem);
+}
+
+/// Refuses a built-in shape so far from the origin, against its element size, that rounding
+/// of the node positions swamps the strains (geometry_limits).
+void check_precision(const TableReader& table, const MeshSpec& mesh) {
+  const auto [x0, y0] = mesh.origin;
+  double farthest = 0.0, element = 0.0;
+  if (mesh.kind == MeshSpec::Kind::rectangle) {
+    farthest = std::max(
+        {std::abs(x0), std::abs(y0), std::abs(x0 + mesh.size[0]), std::abs(y0 + mesh.size[1])});
+    element = mesh.element_size
+                  ? std::min({*mesh.element_size, mesh.size[0], mesh.size[1]})
+                  : std::min(mesh.size[0] / mesh.divisions[0], mesh.size[1] / mesh.divisions[1]);
+  } else if (mesh.kind == MeshSpec::Kind::disk) {
+    farthest = std::hypot(x0, y0) + mesh.radius;
+    element = std::min(mesh.element_size.value_or(mesh.radius), mesh.radius);
+  } else {
+    return;
+  }
+  if (keeps_precision(farthest, element)) return;
+  const std::string_view key = table.has("origin")                 ? "origin"
+                               : mesh.kind == MeshSpec::Kind::disk ? "radius"
+                                                                   : "size";
+  table.fail(key, "expected " + precision_expectation() + ", got nodes " + format_number(farthest) +
+                      " m from it with elements of " + format_number(element) + " m");
 }
 
 }  // namespace
@@ -164,8 +216,8 @@ TimeSpec read_time(TableReader& root, Analysis analysis) {
                          ", got nothing (only a \"static\" scene may leave it out)");
   }
   TableReader table = optional_table(root, "time");
-  table.allow_only({"dt", "end", "steps", "dt_min", "max_step_displacement", "dt_max",
-                    "integrator", "stop_at_softening", "softening_probe"});
+  table.allow_only({"dt", "end", "steps", "dt_min", "max_step_displacement", "dt_max", "integrator",
+                    "stop_at_softening", "softening_probe"});
   TimeSpec time;
   time.dt =
       is_static ? table.number_or("dt", 1.0, above(0)) : table.required_number("dt", above(0));
@@ -223,7 +275,7 @@ MeshSpec read_mesh(TableReader& root, const fs::path& scene_dir) {
                                 sources[0] + " and " + sources[1]);
   }
   MeshSpec mesh;
-  mesh.element_size = table->number("element_size", above(0));
+  mesh.element_size = table->number("element_size", length_range());
   if (sources[0] == "geo" || sources[0] == "msh") {
     const std::string source = "mesh." + sources[0];
     refuse_keys(*table, {"size", "origin", "divisions", "radius", "flat_half_angle_deg"}, source);
@@ -236,6 +288,8 @@ MeshSpec read_mesh(TableReader& root, const fs::path& scene_dir) {
   } else {
     read_disk(*table, mesh);
   }
+  check_mesh_budget(*table, mesh);
+  check_precision(*table, mesh);
   return mesh;
 }
 
@@ -268,8 +322,8 @@ FractureSpec read_fracture(TableReader& root, bool has_damage) {
   } else {
     table.record_default("max_damage_passes", std::to_string(fracture.max_damage_passes));
   }
-  fracture.fragment_stiffness =
-      table.number_or("fragment_stiffness", fracture.fragment_stiffness, between(0, false, 1, true));
+  fracture.fragment_stiffness = table.number_or("fragment_stiffness", fracture.fragment_stiffness,
+                                                between(0, false, 1, true));
   return fracture;
 }
 
