@@ -190,7 +190,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
   const std::size_t num_dofs = model_.X.size();
   if (damage_) {
     attempt_first_damage_.reset();
-    attempt_damage_dissipation_ = 0.0;
+    energy_.begin_attempt();
     if (retries > 0 && model_.damage != committed_damage_) {
       model_.damage = committed_damage_;
       factorized_mass_coefficient_ = -1.0;  // the moduli changed back
@@ -227,11 +227,30 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     fragments_.forces(state_.du, state_.restraint_force);
   }
   // The damage iteration (METHOD.md): while elements newly damage, re-solve the same step
-  // with their reduced moduli.
+  // with their reduced moduli. Without carried velocity each re-solve jumps to the next
+  // equilibrium: the energy the rock gives up on the way (less the work of the loads and of
+  // friction) is what a dynamic run would turn into motion. It is measured, as snap-back.
+  const bool count_snap_back = scene_.analysis != Analysis::dynamic;
+  double settled_energy = 0.0;  // stored energy just after the last pass dropped the moduli
   for (int pass = 1;; ++pass) {
     if (!open_close_iteration(step, retries, inertia, control)) return false;
     if (!damage_) break;
+    const double released_before = energy_.attempt_damage;
     const DamageChange change = evaluate_damage();
+    if (count_snap_back && (pass > 1 || change.grown > 0)) {
+      const double stored = stored_energy(inertia);  // at this solve, before its modulus drop
+      if (pass > 1) {
+        double load_work = 0.0;
+        for (std::size_t d = 0; d < num_dofs; ++d)
+          load_work += state_.f_ext[d] * (state_.positions[d] - state_.positions_settled[d]);
+        const double friction =
+            contact_ ? contact_->friction_work_between(state_.positions_settled, state_.positions)
+                     : 0.0;
+        energy_.attempt_snap_back += settled_energy - stored + load_work - friction;
+      }
+      settled_energy = stored - (energy_.attempt_damage - released_before);
+      std::swap(state_.positions, state_.positions_settled);
+    }
     if (change.newly_damaged == 0) break;
     if (pass >= scene_.fracture.max_damage_passes) {
       ++stats_.damage_limit_hits;
@@ -276,7 +295,7 @@ DamageChange Simulation::evaluate_damage() {
   const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band);
   if (change.grown > 0) {
     factorized_mass_coefficient_ = -1.0;  // the moduli changed
-    attempt_damage_dissipation_ += released_by_damage(damage_before_);
+    energy_.attempt_damage += released_by_damage(damage_before_);
   }
   if (change.newly_damaged > 0 && !first_damage_ && !attempt_first_damage_) {
     FirstDamage first{stats_.steps + 1, attempt_time_, 0, 0.0, 0.0, 0.0};
@@ -387,8 +406,7 @@ void Simulation::commit_step(double dt) {
   fragments_.forces(state_.du, state_.restraint_force);
   // The restraint's springs restart from zero force next step: the energy they hold now
   // leaves the balance, a loss of the method (not of the rock) that summary.json reports.
-  for (std::size_t d = 0; d < num_dofs; ++d)
-    anchor_energy_ += 0.5 * state_.restraint_force[d] * state_.du[d];
+  energy_.anchor += fragments_.energy(state_.du);
   // The constraints' force on the body, and the work of all external forces (trapezoidal).
   double work = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) {
@@ -399,7 +417,7 @@ void Simulation::commit_step(double dt) {
             (state_.f_ext_old[d] + state_.reaction_old[d] + state_.f_ext[d] + state_.reaction[d]) *
             state_.du[d];
   }
-  external_work_ += work;
+  energy_.external_work += work;
   std::swap(state_.f_ext_old, state_.f_ext);
   std::swap(state_.reaction_old, state_.reaction);
 }
@@ -485,6 +503,19 @@ double Simulation::released_by_damage(std::span<const double> damage_before) con
   return energy * model_.thickness;
 }
 
+double Simulation::stored_energy(const InertiaTerms& inertia) {
+  const std::size_t num_dofs = model_.X.size();
+  double energy = strain_energy(model_, model_.strain, model_.stress);
+  double mass_term = 0.0;
+  for (std::size_t d = 0; d < num_dofs; ++d) {
+    state_.positions[d] = model_.X[d] + model_.u[d] + state_.du[d];
+    mass_term += model_.node_mass[d / 2] * state_.du[d] * state_.du[d];
+  }
+  energy += 0.5 * inertia.mass_coefficient * mass_term + fragments_.energy(state_.du);
+  if (contact_) energy += contact_->spring_energy_at(state_.positions);
+  return energy;
+}
+
 double Simulation::element_force_scale() const {
   // The largest force an element edge carries, about |sigma| sqrt(2 A) t, and the largest
   // load or reaction on a node.
@@ -506,8 +537,9 @@ EnergyBalance Simulation::energy() const {
                  (model_.v[2 * n] * model_.v[2 * n] + model_.v[2 * n + 1] * model_.v[2 * n + 1]);
   e.strain = strain_energy(model_, model_.strain, model_.stress) +
              (contact_ ? contact_->spring_energy() : 0.0);
-  e.external_work = external_work_;
-  e.dissipated = damage_dissipation_ + (contact_ ? contact_->friction_dissipation() : 0.0);
+  e.external_work = energy_.external_work;
+  e.dissipated = energy_.damage + (contact_ ? contact_->friction_dissipation() : 0.0);
+  e.snap_back = energy_.snap_back;
   return e;
 }
 
@@ -588,7 +620,7 @@ RunResult Simulation::run(const RunOptions& options) {
       }
       commit_step(dt);
       if (damage_) {
-        damage_dissipation_ += attempt_damage_dissipation_;
+        energy_.commit_attempt();
         committed_damage_ = model_.damage;
         if (!first_damage_) first_damage_ = attempt_first_damage_;
       }
@@ -672,14 +704,15 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
     // over measures the scheme's own losses (contact reset, step relinearisation).
     const EnergyBalance e = energy();
     const double friction = contact_ ? contact_->friction_dissipation() : 0.0;
-    s["energy"] = {
-        {"external_work", e.external_work},
-        {"kinetic", e.kinetic},
-        {"strain", e.strain},
-        {"damage_dissipation", damage_dissipation_},
-        {"friction_dissipation", friction},
-        {"anchor_work", anchor_energy_},
-        {"unaccounted", e.external_work - e.kinetic - e.strain - e.dissipated - anchor_energy_}};
+    s["energy"] = {{"external_work", e.external_work},
+                   {"kinetic", e.kinetic},
+                   {"strain", e.strain},
+                   {"damage_dissipation", energy_.damage},
+                   {"friction_dissipation", friction},
+                   {"snap_back", energy_.snap_back},
+                   {"anchor_work", energy_.anchor},
+                   {"unaccounted", e.external_work - e.kinetic - e.strain - e.dissipated -
+                                       e.snap_back - energy_.anchor}};
   }
   s["damaged_elements"] =
       std::count_if(model_.damage.begin(), model_.damage.end(), [](double w) { return w > 0; });

@@ -15,6 +15,7 @@
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
 #include "engine/damage/fragment_restraint.hpp"
+#include "engine/energy_account.hpp"
 #include "engine/loading/boundary_conditions.hpp"
 #include "engine/model/model.hpp"
 #include "engine/output/run_outputs.hpp"
@@ -102,6 +103,10 @@ class Simulation {
   /// Elastic energy a damage pass released (J): the damage grown since `damage_before`, at the
   /// pass's strain (kernels::damage_dissipation).
   double released_by_damage(std::span<const double> damage_before) const;
+  /// Energy the step's springs hold at the increment du (J): elements (from model_'s strain and
+  /// stress), contacts, fragment restraint, and the mass term c M of a step without carried
+  /// velocity. Fills state_.positions with X + u + du.
+  double stored_energy(const InertiaTerms& inertia);
   /// Force scale of the committed state (N): the largest element edge force, load or reaction.
   double element_force_scale() const;
   EnergyBalance energy() const;
@@ -138,11 +143,8 @@ class Simulation {
   double attempt_time_ = 0.0;    // time at the end of the step being attempted
   FragmentRestraint fragments_;  // loose blocks held in steps without inertia
 
-  double external_work_ = 0.0;
-  double damage_dissipation_ = 0.0;          // J, committed steps
-  double attempt_damage_dissipation_ = 0.0;  // J, the step being attempted
-  double anchor_energy_ = 0.0;               // J, held by the fragment restraint when steps ended
-  std::vector<double> damage_before_;        // per element, before a damage pass
+  EnergyAccount energy_;               // work and losses beside the state's own energy
+  std::vector<double> damage_before_;  // per element, before a damage pass
 
   /// The peak of the watched history column and whether it has softened past the scene's
   /// fraction (time.stop_at_softening).

@@ -20,6 +20,8 @@ struct StepState {
   std::vector<double> positions;               // scratch: X + u for geometry queries
   std::vector<double> damage_force;            // f_int at the step's result, for damage checks
   std::vector<double> restraint_force;         // fragment restraint's force on the increment
+  std::vector<double> positions_settled;       // X + u + du where the last damage pass dropped
+                                               // the moduli (the snap-back's start)
   std::vector<double> rhs;                     // per equation: the solve's right side and answer
 
   /// Zeroed arrays for `num_dofs` dofs and `num_equations` equations.

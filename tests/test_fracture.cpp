@@ -114,7 +114,8 @@ TEST(Damage, FirstElementDamagesWhenTheStressReachesTheWeakestStrength) {
   ASSERT_GE(first, 2u);
   // Stopped one step short of it, nothing is damaged; stopped at it, the weakest element is.
   const std::string heterogeneous =
-      "homogeneity = 10.0\nheterogeneous = [\"tensile_strength\"]\nseed = 7\n";
+      "homogeneity = 10.0\nheterogeneous = [\"tensile_strength\"]\nseed = 7\n"
+      "detach_at_damage = 0.0\n";  // detached at onset: the damaged element is a block
   const auto before = test::run_scene_text(bar_in_tension(heterogeneous),
                                            {"time.end=" + std::to_string(first - 1) + ".0"});
   EXPECT_EQ(before.result.summary["damaged_elements"].get<long>(), 0);
@@ -161,9 +162,8 @@ TEST(Damage, DissipatesWhatTheSecantLawCannotReturn) {
   const auto& dissipated = run.history.at("energy.dissipated");
   EXPECT_NEAR(dissipated.back(), expected, 1e-9 * expected);
   const double eps = steps * rate;
-  const double integral =
-      volume * (0.5 * young * eps_1 * eps_1 * (1.0 - lambda * eps_t0 / eps_1) +
-                0.5 * lambda * young * eps_t0 * (eps - eps_1));
+  const double integral = volume * (0.5 * young * eps_1 * eps_1 * (1.0 - lambda * eps_t0 / eps_1) +
+                                    0.5 * lambda * young * eps_t0 * (eps - eps_1));
   EXPECT_NEAR(dissipated.back(), integral, 0.005 * integral);
   const double stored = run.history.at("energy.strain").back();
   EXPECT_NEAR(run.history.at("energy.external_work").back(), stored + dissipated.back(),
@@ -171,8 +171,7 @@ TEST(Damage, DissipatesWhatTheSecantLawCannotReturn) {
   // summary.json splits the same balance: all of it damage (no contacts, no fragments to
   // anchor), and "unaccounted" is exactly the trapezoidal rule's share above.
   const auto& energy = run.result.summary.at("energy");
-  EXPECT_NEAR(energy.at("damage_dissipation").get<double>(), dissipated.back(),
-              1e-12 * expected);
+  EXPECT_NEAR(energy.at("damage_dissipation").get<double>(), dissipated.back(), 1e-12 * expected);
   EXPECT_EQ(energy.at("friction_dissipation").get<double>(), 0.0);
   EXPECT_EQ(energy.at("anchor_work").get<double>(), 0.0);
   EXPECT_NEAR(energy.at("unaccounted").get<double>(),

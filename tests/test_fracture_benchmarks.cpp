@@ -89,8 +89,11 @@ TEST(BrazilianDisk, CrackRunsAlongTheLoadedDiameterToBothEnds) {
   EXPECT_GE(in_band, 0.9 * damaged) << in_band << " of " << damaged;
   EXPECT_GT(middle, 0);
   EXPECT_EQ(middle_in_band, middle);
-  // Every damaged element has become a block of its own (detach_at_damage = 0).
-  EXPECT_EQ(run.result.summary.at("detached_elements").get<long>(), damaged);
+  // Exactly the fully broken elements have become blocks of their own (detach_at_damage = 1).
+  const auto broken =
+      std::count_if(model.damage.begin(), model.damage.end(), [](double w) { return w >= 1.0; });
+  EXPECT_GT(broken, 0);
+  EXPECT_EQ(run.result.summary.at("detached_elements").get<long>(), broken);
 }
 
 /// What the displacement-controlled disk run shows about its split.
@@ -101,6 +104,7 @@ struct DiskSplit {
   double near_diameter = 0.0;         // share of damaged elements within 0.2 R of x = 0
   std::vector<double> large_block_x;  // mean reference x of blocks > 10 % of the elements
   std::vector<std::int32_t> large_block_size;
+  double energy_gap = 0.0;  // largest |work - strain - kinetic - dissipated - snap-back| / work
 };
 
 DiskSplit run_displacement_disk(const std::vector<std::string>& overrides) {
@@ -112,6 +116,14 @@ DiskSplit run_displacement_disk(const std::vector<std::string>& overrides) {
   for (double f : force) peak = std::max(peak, std::abs(f));
   split.peak_strength = peak / (std::numbers::pi * kRadius);
   split.final_over_peak = std::abs(force.back()) / peak;
+  const auto& work = run.history.at("energy.external_work");
+  for (std::size_t i = 0; i < work.size(); ++i) {
+    if (work[i] < 0.01 * work.back()) continue;
+    const double gap =
+        work[i] - run.history.at("energy.strain")[i] - run.history.at("energy.kinetic")[i] -
+        run.history.at("energy.dissipated")[i] - run.history.at("energy.snap_back")[i];
+    split.energy_gap = std::max(split.energy_gap, std::abs(gap) / work[i]);
+  }
   const Model& model = run.model;
   std::vector<double> x_sum(static_cast<std::size_t>(model.num_blocks), 0.0);
   std::vector<std::int32_t> count(static_cast<std::size_t>(model.num_blocks), 0);
@@ -145,6 +157,10 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
   // That share is short of the 80 % issue 11 asks: after the main crack, cracks start at the
   // flats' edges, 6-10 mm off the diameter, within the same step (docs/convergence.md). It is
   // held here at >= 45 %, so that a change that spreads damage further shows.
+  // Energy: at every step the work done equals strain + kinetic energy + damage and friction
+  // dissipation + the snap-back energy (released as the disk re-settles after each damage
+  // event at fixed platens, measured as the fall of the stored energy in that re-solve), to
+  // 2 % of the work. Measured: 0.4 %; without the snap-back term 66 % of the work is missing.
   const double alpha = kFlatHalfAngle;
   const double huang = 2e6 / (3.0 * std::cos(alpha) - 2.0 * alpha / std::sin(alpha));
   EXPECT_NEAR(huang, 2.118e6, 0.001e6);
@@ -159,6 +175,7 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
     const double a = split.large_block_size[0], b = split.large_block_size[1];
     EXPECT_LT(std::abs(a - b), 0.25 * std::max(a, b));
     EXPECT_GE(split.near_diameter, 0.45) << split.damaged << " damaged";
+    EXPECT_LT(split.energy_gap, 0.02);
   }
 }
 

@@ -192,7 +192,7 @@ TEST(SceneReader, StaticSceneWithoutTimeRunsOneStepAndRecordsEveryDefault) {
       {"material[0].residual", "0.1"},
       {"material[0].ultimate_strain", "5"},
       {"material[0].tension_onset", "stress"},
-      {"material[0].detach_at_damage", "0"},
+      {"material[0].detach_at_damage", "1"},
       {"fracture.damage_band", "0.005"},  // recorded since the material can damage
       {"fracture.max_damage_passes", "500"},
       {"fracture.fragment_stiffness", "1e-06"},

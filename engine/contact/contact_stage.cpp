@@ -5,6 +5,7 @@
 #include <map>
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "kernels/contact_geometry.hpp"
 
@@ -546,6 +547,40 @@ ContactStage::ShearUpdate ContactStage::update_shear_without_inertia(Contact& c,
   return out;
 }
 
+namespace {
+
+/// Normal and shear force of a closed contact at `gap` and step slip `slip` (commit's rule).
+std::pair<double, double> spring_forces(const Contact& c, const ContactParameters& p, double gap,
+                                        double slip) {
+  const double shear = c.state == ContactState::locked
+                           ? p.shear_stiffness * (c.shear_spring + slip)
+                           : -c.friction_force + c.slide_stiffness * (slip - c.slide_slip);
+  return {p.normal_stiffness * gap, shear};
+}
+
+}  // namespace
+
+double ContactStage::spring_energy_at(std::span<const double> positions) const {
+  double energy = 0.0;
+  for (const Contact& c : contacts_) {
+    if (c.state == ContactState::open) continue;
+    const auto [normal, shear] =
+        spring_forces(c, parameters_, linear_gap(c, positions), step_slip(c, positions));
+    energy += 0.5 * (normal * normal / parameters_.normal_stiffness +
+                     shear * shear / parameters_.shear_stiffness);
+  }
+  return energy;
+}
+
+double ContactStage::friction_work_between(std::span<const double> from,
+                                           std::span<const double> to) const {
+  double work = 0.0;
+  for (const Contact& c : contacts_)
+    if (c.state == ContactState::sliding)
+      work += std::abs(c.friction_force) * std::abs(step_slip(c, to) - step_slip(c, from));
+  return work;
+}
+
 void ContactStage::commit(std::span<const double> positions) {
   const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
   spring_energy_ = 0.0;
@@ -558,10 +593,7 @@ void ContactStage::commit(std::span<const double> positions) {
     // followed in this step (plastic slip, from where it stood at the step start or closing).
     const double slip = step_slip(c, positions);
     c.end_gap = linear_gap(c, positions);
-    const double normal = kn * c.end_gap;
-    const double shear = c.state == ContactState::locked
-                             ? ks * (c.shear_spring + slip)
-                             : -c.friction_force + c.slide_stiffness * (slip - c.slide_slip);
+    const auto [normal, shear] = spring_forces(c, parameters_, c.end_gap, slip);
     spring_energy_ += 0.5 * (normal * normal / kn + shear * shear / ks);
     friction_dissipation_ += std::abs(shear) * std::abs(c.anchor_start - c.shear_spring);
     // The anchor is kept in the next step's slip coordinate, which starts from 0.

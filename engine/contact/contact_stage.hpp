@@ -124,6 +124,12 @@ class ContactStage {
   double friction_dissipation() const { return friction_dissipation_; }
   /// Elastic energy of the closed contacts' springs at the last commit (J).
   double spring_energy() const { return spring_energy_; }
+  /// Elastic energy the closed contacts' springs would hold at `positions`, in their current
+  /// states (J; as spring_energy() counts it at a commit).
+  double spring_energy_at(std::span<const double> positions) const;
+  /// Work of friction of the sliding contacts between two iterates of a step (J): the friction
+  /// force times the slip from `from` to `to`.
+  double friction_work_between(std::span<const double> from, std::span<const double> to) const;
 
   /// Contacts whose shear force kept swinging and settled on their last answer (cumulative).
   long shear_swings_settled() const { return shear_swings_settled_; }

@@ -40,4 +40,14 @@ void FragmentRestraint::forces(std::span<const double> du, std::span<double> for
     }
 }
 
+double FragmentRestraint::energy(std::span<const double> du) const {
+  double energy = 0.0;
+  for (std::size_t i = 0; i < nodes_.size(); ++i)
+    for (int c = 0; c < 2; ++c) {
+      const double x = du[2 * static_cast<std::size_t>(nodes_[i]) + c];
+      energy += 0.5 * stiffness_[i] * x * x;
+    }
+  return energy;
+}
+
 }  // namespace rockdd

@@ -31,6 +31,8 @@ class FragmentRestraint {
                      std::span<double> values) const;
   /// force[d] = k du[d] on the restrained nodes, 0 elsewhere (2 per node).
   void forces(std::span<const double> du, std::span<double> force) const;
+  /// Elastic energy of the springs at increment du (J): sum of k du^2 / 2.
+  double energy(std::span<const double> du) const;
 
   std::size_t num_nodes() const { return nodes_.size(); }
 

@@ -32,7 +32,7 @@ RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
   auto& out = history_->stream();
   out << "step,time,dt";
   for (const auto& c : columns_) out << ',' << c;
-  out << ",energy.kinetic,energy.strain,energy.external_work,energy.dissipated\n";
+  out << ",energy.kinetic,energy.strain,energy.external_work,energy.dissipated,energy.snap_back\n";
 }
 
 RunOutputs::~RunOutputs() = default;
@@ -46,7 +46,8 @@ void RunOutputs::history_row(long step, double time, double dt,
     double& peak = peaks_[columns_[i]];
     peak = std::max(peak, std::abs(probe_values[i]));
   }
-  for (const double e : {energy.kinetic, energy.strain, energy.external_work, energy.dissipated})
+  for (const double e :
+       {energy.kinetic, energy.strain, energy.external_work, energy.dissipated, energy.snap_back})
     out << ',' << format_number(e);
   out << '\n';
 }

@@ -19,6 +19,7 @@ namespace rockdd {
 /// Energy totals over the thickness (J), the last four history columns.
 struct EnergyBalance {
   double kinetic = 0, strain = 0, external_work = 0, dissipated = 0;
+  double snap_back = 0;  // released by re-settling after damage, without inertia (J)
 };
 
 /// Writes the run's files; history.csv appears only through finish(): a run that dies

@@ -60,7 +60,7 @@ struct MaterialSpec {
   double ultimate_strain = 5.0;           // eta
   std::optional<double> fracture_energy;  // G_f (J/m^2): crack band, eta per element from its size
   TensionOnset tension_onset = TensionOnset::stress;
-  double detach_at_damage = 0.0;           // 1: only once fully broken (w = 1)
+  double detach_at_damage = 1.0;           // 1: only once fully broken (w = 1); 0: at onset
   std::optional<double> homogeneity;       // Weibull m
   std::vector<std::string> heterogeneous;  // "young", "tensile_strength", ...
   std::uint64_t seed = 0;

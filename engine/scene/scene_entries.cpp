@@ -81,7 +81,7 @@ void read_damage(TableReader& t, MaterialSpec& m) {
     }
   } else {
     m.ultimate_strain = number("ultimate_strain", 5.0, above(1, true));
-    m.detach_at_damage = number("detach_at_damage", 0.0, between(0, true, 1, true));
+    m.detach_at_damage = number("detach_at_damage", 1.0, between(0, true, 1, true));
   }
   const auto onset = used ? t.choice_or("tension_onset", {"stress", "strain"}, "stress")
                           : t.choice("tension_onset", {"stress", "strain"}).value_or("stress");
