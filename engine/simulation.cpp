@@ -195,6 +195,13 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
       model_.damage = committed_damage_;
       factorized_mass_coefficient_ = -1.0;  // the moduli changed back
     }
+    if (scene_.analysis == Analysis::dynamic) {
+      ScopedTimer timer(timers_.damage);
+      state_.committed_strain.resize(model_.strain.size());
+      state_.committed_stress.resize(model_.stress.size());
+      compute_internal_force(model_, coloring_, model_.u, state_.committed_strain,
+                             state_.committed_stress, state_.damage_force, corotational_);
+    }
   }
   if (contact_) {
     bool changed = false;
@@ -295,7 +302,12 @@ DamageChange Simulation::evaluate_damage() {
   const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band);
   if (change.grown > 0) {
     factorized_mass_coefficient_ = -1.0;  // the moduli changed
-    energy_.attempt_damage += released_by_damage(damage_before_);
+    // Without carried velocity the pass drops the moduli at its own strain and re-solves from
+    // there. A dynamic step instead integrates the whole step with the new moduli, from the
+    // committed state: that is where its modulus drop takes the energy.
+    energy_.attempt_damage += released_by_damage(
+        damage_before_,
+        scene_.analysis == Analysis::dynamic ? state_.committed_strain : model_.strain);
   }
   if (change.newly_damaged > 0 && !first_damage_ && !attempt_first_damage_) {
     FirstDamage first{stats_.steps + 1, attempt_time_, 0, 0.0, 0.0, 0.0};
@@ -487,19 +499,19 @@ nlohmann::json Simulation::Softening::summary(const TimeSpec& spec) const {
           {"value", value}};
 }
 
-double Simulation::released_by_damage(std::span<const double> damage_before) const {
-  // At the strain of the pass that grew the damage: the modulus drops at that strain, and the
-  // deformation the softer element takes on afterwards is stored at the new modulus (counted
-  // in the strain energy). Serially in element order: the total must not depend on threads.
+double Simulation::released_by_damage(std::span<const double> damage_before,
+                                      std::span<const double> strain) const {
+  // At `strain`, where the modulus drops; the deformation the softer element takes on
+  // afterwards is stored at the new modulus (counted in the strain energy). Serially in
+  // element order: the total must not depend on threads.
   const kernels::PlaneKind plane = plane_kind(model_.plane);
   double energy = 0.0;
   for (std::int32_t e = 0; e < model_.num_elements(); ++e)
     if (model_.damage[e] > damage_before[e])
-      energy +=
-          kernels::damage_dissipation(&model_.strain[3 * static_cast<std::size_t>(e)],
-                                      model_.young[e], model_.poisson[e], plane, damage_before[e],
-                                      model_.damage[e], kDamagedStiffnessFloor) *
-          model_.area0[e];
+      energy += kernels::damage_dissipation(
+                    &strain[3 * static_cast<std::size_t>(e)], model_.young[e], model_.poisson[e],
+                    plane, damage_before[e], model_.damage[e], kDamagedStiffnessFloor) *
+                model_.area0[e];
   return energy * model_.thickness;
 }
 

@@ -100,9 +100,11 @@ class Simulation {
   /// After a committed step: damaged elements become blocks, and what hangs on the nodes
   /// is rebuilt for the new topology.
   void detach_fractured_elements();
-  /// Elastic energy a damage pass released (J): the damage grown since `damage_before`, at the
-  /// pass's strain (kernels::damage_dissipation).
-  double released_by_damage(std::span<const double> damage_before) const;
+
+  /// Elastic energy a damage pass released (J): the damage grown since `damage_before`, at
+  /// `strain` (kernels::damage_dissipation).
+  double released_by_damage(std::span<const double> damage_before,
+                            std::span<const double> strain) const;
   /// Energy the step's springs hold at the increment du (J): elements (from model_'s strain and
   /// stress), contacts, fragment restraint, and the mass term c M of a step without carried
   /// velocity. Fills state_.positions with X + u + du.

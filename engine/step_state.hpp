@@ -23,6 +23,8 @@ struct StepState {
   std::vector<double> positions_settled;       // X + u + du where the last damage pass dropped
                                                // the moduli (the snap-back's start)
   std::vector<double> rhs;                     // per equation: the solve's right side and answer
+  std::vector<double> committed_strain, committed_stress;  // per element (3 each), at the
+                                                           // committed u: dynamic damage energy
 
   /// Zeroed arrays for `num_dofs` dofs and `num_equations` equations.
   void resize(std::size_t num_dofs, std::int32_t num_equations);

@@ -300,5 +300,21 @@ fix = ["x", "y"]
   }
 }
 
+TEST(Fracture, CrackJointSpringsSetTheContactStiffness) {
+  // SCENE.md: a [[joint]]'s normal_stiffness (N/m per unit thickness) sets kn, the crack joint
+  // included (it was ignored: fracture faces took 20 E t whatever the scene said). The bar
+  // breaks in the last steps; its fracture faces then use the crack joint's springs.
+  const auto run = test::run_scene_text(
+      bar_in_tension("homogeneity = 10.0\nheterogeneous = [\"tensile_strength\"]\nseed = 7\n"
+                     "detach_at_damage = 0.0\n[[joint]]\nbetween = \"crack\"\n"
+                     "friction_angle = 30.0\nnormal_stiffness = 3e9\nshear_stiffness = 1e9\n"),
+      {"time.end=40.0"});
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  ASSERT_GT(run.result.summary["detached_elements"].get<long>(), 0);
+  const auto& defaults = run.result.summary["defaults"];
+  EXPECT_DOUBLE_EQ(defaults["contact.normal_stiffness"].get<double>(), 3e9);
+  EXPECT_DOUBLE_EQ(defaults["contact.shear_stiffness"].get<double>(), 1e9);
+}
+
 }  // namespace
 }  // namespace rockdd

@@ -83,6 +83,10 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   };
   std::optional<double> given_kn, given_ks;
   for (const JointSpec& joint : scene.joints) {
+    // The springs are one pair for every contact: the last joint that gives one sets it, the
+    // crack joint included.
+    if (joint.normal_stiffness) given_kn = joint.normal_stiffness;
+    if (joint.shear_stiffness) given_ks = joint.shear_stiffness;
     if (joint.between.size() == 1 && joint.between[0] == "crack") continue;  // fracture faces
     std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
     if (joint.between.size() == 1 && joint.between[0] == "*") {
@@ -101,8 +105,6 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
       joint_cohesion_[k] = joint.cohesion;
       joint_tensile_[k] = joint.tensile_strength;
     }
-    if (joint.normal_stiffness) given_kn = joint.normal_stiffness;
-    if (joint.shear_stiffness) given_ks = joint.shear_stiffness;
   }
   // Fracture faces (METHOD.md "Fracture"): blocks of one body that fracture separated touch
   // with the "crack" joint's properties, or else the material's friction angle and no
