@@ -245,7 +245,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     const double released_before = energy_.attempt_damage;
     const DamageChange change = evaluate_damage();
     if (count_snap_back && (pass > 1 || change.grown > 0)) {
-      const double stored = stored_energy(inertia);  // at this solve, before its modulus drop
+      const double stored = stored_energy();  // at this solve, before its modulus drop
       if (pass > 1) {
         double load_work = 0.0;
         for (std::size_t d = 0; d < num_dofs; ++d)
@@ -515,15 +515,14 @@ double Simulation::released_by_damage(std::span<const double> damage_before,
   return energy * model_.thickness;
 }
 
-double Simulation::stored_energy(const InertiaTerms& inertia) {
+double Simulation::stored_energy() {
+  // The mass term c M of a quasi-static step is not stored: it holds the step's motion, which
+  // the next step starts without (the velocity reset), so what goes into it is released.
   const std::size_t num_dofs = model_.X.size();
-  double energy = strain_energy(model_, model_.strain, model_.stress);
-  double mass_term = 0.0;
-  for (std::size_t d = 0; d < num_dofs; ++d) {
+  for (std::size_t d = 0; d < num_dofs; ++d)
     state_.positions[d] = model_.X[d] + model_.u[d] + state_.du[d];
-    mass_term += model_.node_mass[d / 2] * state_.du[d] * state_.du[d];
-  }
-  energy += 0.5 * inertia.mass_coefficient * mass_term + fragments_.energy(state_.du);
+  double energy =
+      strain_energy(model_, model_.strain, model_.stress) + fragments_.energy(state_.du);
   if (contact_) energy += contact_->spring_energy_at(state_.positions);
   return energy;
 }

@@ -105,10 +105,9 @@ class Simulation {
   /// `strain` (kernels::damage_dissipation).
   double released_by_damage(std::span<const double> damage_before,
                             std::span<const double> strain) const;
-  /// Energy the step's springs hold at the increment du (J): elements (from model_'s strain and
-  /// stress), contacts, fragment restraint, and the mass term c M of a step without carried
-  /// velocity. Fills state_.positions with X + u + du.
-  double stored_energy(const InertiaTerms& inertia);
+  /// Energy the rock and its springs hold at the increment du (J): elements (from model_'s
+  /// strain and stress), contacts and fragment restraint. Fills state_.positions with X + u + du.
+  double stored_energy();
   /// Force scale of the committed state (N): the largest element edge force, load or reaction.
   double element_force_scale() const;
   EnergyBalance energy() const;
