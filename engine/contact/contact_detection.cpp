@@ -275,6 +275,8 @@ std::vector<ContactCandidate> detect_contacts(const BlockBoundary& boundary,
         const auto index = static_cast<std::size_t>(tree_vertex[t]);
         const std::int32_t vertex_block = boundary.vertex_block[index];
         if (vertex_block == edge_block) continue;
+        if (!rules.inert.empty() && (rules.inert[vertex_block] || rules.inert[edge_block]))
+          continue;
         const double facing =
             normal[0] * normals.vertex[2 * index] + normal[1] * normals.vertex[2 * index + 1];
         if (!(facing < -kFacingMargin)) continue;

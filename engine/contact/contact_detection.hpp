@@ -29,6 +29,7 @@ struct ContactRules {
   std::int32_t num_bodies = 0;
   std::vector<std::uint8_t> allowed;
   std::vector<std::int32_t> block_body;  // body of each block
+  std::vector<std::uint8_t> inert;       // per block (empty: none): takes no part in contact
 };
 
 /// Boundary edges and vertices of the model's blocks (edges whose neighbour is absent or in

@@ -130,6 +130,17 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   rules_.block_body.assign(static_cast<std::size_t>(model.num_blocks), 0);
   for (std::int32_t e = 0; e < model.num_elements(); ++e)
     rules_.block_body[model.element_block[e]] = model.element_body[e];
+  // A block of fully broken elements (w = 1, the stiffness floor) is the open crack itself,
+  // not a grain of rock: it takes no part in contact. As a contact body it could be crushed
+  // to a point, and the copies of a node where several such fragments meet were pinched
+  // between their neighbours' faces 10-25 um deep, in equilibrium with each other: hundreds
+  // of joules in springs inside collapse steps, and a crack path that a 1e-9 change of the
+  // load moved (docs/method-choices.md, "Fracture").
+  if (!model.damage.empty()) {
+    rules_.inert.assign(static_cast<std::size_t>(model.num_blocks), 1);
+    for (std::int32_t e = 0; e < model.num_elements(); ++e)
+      if (model.damage[e] < 1.0) rules_.inert[model.element_block[e]] = 0;
+  }
 
   // Penalty springs scale with the stiffest material in contact (METHOD.md: about 10-100 E t).
   double stiffest = 0.0;
