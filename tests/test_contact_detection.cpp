@@ -99,6 +99,33 @@ TEST(DetectContacts, FacingSidesPairWithinReachOnly) {
   EXPECT_TRUE(detect_contacts(b, positions(model), none, 0.02).empty());
 }
 
+TEST(DetectContacts, AnInertBlockTouchesNothing) {
+  // A block of fully broken elements is the open crack (ContactRules::inert): neither its
+  // vertices nor its edges take part, whatever lies within reach. Three squares in a row,
+  // 0.01 apart: 4 contacts at each of the two gaps; with the middle one inert, none; with
+  // the last one inert, the 4 of the first gap.
+  const Model model = squares({{0, 0}, {1.01, 0}, {2.02, 0}});
+  const BlockBoundary b = extract_block_boundary(model);
+  ContactRules rules = all_pairs(model);
+  ASSERT_EQ(detect_contacts(b, positions(model), rules, 0.02).size(), 8u);
+  auto block_at = [&](double x) {
+    for (std::int32_t n = 0; n < model.num_nodes(); ++n)
+      if (std::abs(model.X[2 * n] - x) < 1e-12) return model.node_block[n];
+    return -1;
+  };
+  rules.inert.assign(static_cast<std::size_t>(model.num_blocks), 0);
+  rules.inert[block_at(1.01)] = 1;
+  EXPECT_TRUE(detect_contacts(b, positions(model), rules, 0.02).empty());
+  std::fill(rules.inert.begin(), rules.inert.end(), 0);
+  rules.inert[block_at(3.02)] = 1;
+  const auto left = detect_contacts(b, positions(model), rules, 0.02);
+  EXPECT_EQ(left.size(), 4u);
+  for (const auto& c : left) {
+    EXPECT_FALSE(rules.inert[b.edge_block[c.edge]]);
+    EXPECT_FALSE(rules.inert[model.node_block[c.vertex]]);
+  }
+}
+
 TEST(DetectContacts, SameForOneAndTwoThreadsAndMatchesBruteForce) {
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> U(0, 30);
