@@ -397,9 +397,16 @@ void Simulation::commit_step(double dt) {
   const std::size_t num_dofs = model_.X.size();
   update_velocity(scene_.analysis, scene_.time.integrator, dt, state_.du, bc_.prescribed,
                   bc_.velocity, model_.v, state_.acceleration);
-  if (corotational_)
-    correct_block_rotations(model_, model_.u, bc_.prescribed, state_.du, model_.v,
+  if (corotational_) {
+    // Only blocks that nothing holds turn exactly; the others stay where the solve balanced
+    // them against their constraints and contacts.
+    state_.held_nodes.assign(static_cast<std::size_t>(model_.num_nodes()), 0);
+    for (std::size_t d = 0; d < num_dofs; ++d)
+      if (bc_.prescribed[d]) state_.held_nodes[d / 2] = 1;
+    if (contact_) contact_->mark_touching_nodes(state_.held_nodes);
+    correct_block_rotations(model_, model_.u, state_.held_nodes, state_.du, model_.v,
                             state_.acceleration);
+  }
   for (std::size_t d = 0; d < num_dofs; ++d) model_.u[d] += state_.du[d];
   {
     ScopedTimer timer(timers_.assembly);

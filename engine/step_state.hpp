@@ -23,6 +23,7 @@ struct StepState {
   std::vector<double> positions_settled;       // X + u + du where the last damage pass dropped
                                                // the moduli (the snap-back's start)
   std::vector<double> rhs;                     // per equation: the solve's right side and answer
+  std::vector<std::uint8_t> held_nodes;        // per node: prescribed or in a closed contact
   std::vector<double> committed_strain, committed_stress;  // per element (3 each), at the
                                                            // committed u: dynamic damage energy
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "engine/time/rotation_correction.hpp"
 #include "kernels/cst.hpp"
 #include "test_support.hpp"
 
@@ -100,6 +101,45 @@ TEST_P(SpinningBlock, KeepsItsAreaSpeedAndZeroStressForThreeTurns) {
 }
 
 INSTANTIATE_TEST_SUITE_P(BothIntegrators, SpinningBlock, ::testing::Values("dda", "newmark"));
+
+TEST(RotationCorrection, TurnsAFreeBlockExactlyAndLeavesAHeldOneWhereTheSolveBalancedIt) {
+  // A straight-line increment du = theta J r (J r = (-ry, rx) about the centre of mass)
+  // becomes the exact turn (R(theta) - I) r of a free block: every corner keeps its distance
+  // from the centre to 1e-12 m. A block with one node held (prescribed, or in a closed
+  // contact) keeps du as solved, to the bit: turning it would push it by theta^2 r / 2 into
+  // whatever holds it.
+  const Scene scene = test::scene_from_text(spinning_block(1.0, "dda"), test::TempDir().path());
+  const Model model = build_scene_model(scene);
+  const std::size_t dofs = model.X.size();
+  double mass = 0, cx = 0, cy = 0;
+  for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
+    mass += model.node_mass[n];
+    cx += model.node_mass[n] * model.X[2 * n];
+    cy += model.node_mass[n] * model.X[2 * n + 1];
+  }
+  cx /= mass;
+  cy /= mass;
+  const double theta = 0.05;
+  std::vector<double> linear(dofs);
+  for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
+    linear[2 * n] = -theta * (model.X[2 * n + 1] - cy);
+    linear[2 * n + 1] = theta * (model.X[2 * n] - cx);
+  }
+  const std::vector<double> u(dofs, 0.0);
+  std::vector<double> du = linear, v(dofs, 0.0), a(dofs, 0.0);
+  std::vector<std::uint8_t> held(static_cast<std::size_t>(model.num_nodes()), 0);
+  correct_block_rotations(model, u, held, du, v, a);
+  for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
+    const double r0 = std::hypot(model.X[2 * n] - cx, model.X[2 * n + 1] - cy);
+    const double r1 = std::hypot(model.X[2 * n] + du[2 * n] - cx,
+                                 model.X[2 * n + 1] + du[2 * n + 1] - cy);
+    EXPECT_NEAR(r1, r0, 1e-12);
+  }
+  du = linear;
+  held[0] = 1;
+  correct_block_rotations(model, u, held, du, v, a);
+  EXPECT_EQ(du, linear);
+}
 
 }  // namespace
 }  // namespace rockdd

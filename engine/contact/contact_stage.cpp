@@ -184,6 +184,11 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   }
 }
 
+void ContactStage::mark_touching_nodes(std::span<std::uint8_t> node_mask) const {
+  for (const Contact& c : contacts_)
+    if (c.state != ContactState::open) node_mask[c.vertex] = node_mask[c.a] = node_mask[c.b] = 1;
+}
+
 std::vector<ContactSprings> ContactStage::springs() const {
   std::vector<ContactSprings> out(contacts_.size());
   for (std::size_t i = 0; i < contacts_.size(); ++i)

@@ -105,6 +105,9 @@ class ContactStage {
   /// accumulates, other contacts forget theirs.
   void commit(std::span<const double> positions);
 
+  /// Sets `node_mask[n]` to 1 for every node (vertex or edge end) of a closed contact.
+  void mark_touching_nodes(std::span<std::uint8_t> node_mask) const;
+
   /// The springs of all contacts, in order (to compare before and after an update).
   std::vector<ContactSprings> springs() const;
   /// The springs that differ between `before` (from springs()) and the current ones, as

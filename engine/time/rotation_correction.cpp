@@ -37,7 +37,7 @@ void turn_about_mean(const Model& model, const std::vector<double>& theta,
 }  // namespace
 
 void correct_block_rotations(const Model& model, std::span<const double> u,
-                             std::span<const std::uint8_t> prescribed, std::span<double> du,
+                             std::span<const std::uint8_t> held_nodes, std::span<double> du,
                              std::span<double> v, std::span<double> acceleration) {
   const auto num_blocks = static_cast<std::size_t>(model.num_blocks);
   const std::int32_t num_nodes = model.num_nodes();
@@ -46,7 +46,7 @@ void correct_block_rotations(const Model& model, std::span<const double> u,
   for (std::int32_t n = 0; n < num_nodes; ++n) {
     const auto b = static_cast<std::size_t>(model.node_block[n]);
     mass[b] += model.node_mass[n];
-    if (prescribed[2 * n] || prescribed[2 * n + 1]) held[b] = 1;
+    if (held_nodes[n]) held[b] = 1;
   }
   std::vector<double> position(u.size());
   for (std::size_t d = 0; d < u.size(); ++d) position[d] = model.X[d] + u[d];
