@@ -187,6 +187,7 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
 bool Simulation::attempt_step(long step, int retries, double dt, double load_factor,
                               StepControl& control) {
   const InertiaTerms inertia = inertia_terms(scene_.analysis, scene_.time.integrator, dt);
+  state_.load_factor = load_factor;
   const std::size_t num_dofs = model_.X.size();
   if (damage_) {
     attempt_first_damage_.reset();
@@ -237,27 +238,48 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
   // with their reduced moduli. Without carried velocity each re-solve jumps to the next
   // equilibrium: the energy the rock gives up on the way (less the work of the loads and of
   // friction) is what a dynamic run would turn into motion. It is measured, as snap-back.
+  // A step may also start out of balance: the last step's final pass dropped moduli without a
+  // re-solve (damage that grew without new onsets), or a split node no longer passes the
+  // force it carried between the elements around it. The first solve re-settles that along
+  // with the step's boundary increment; it is snap-back too, measured from the committed state.
   const bool count_snap_back = scene_.analysis != Analysis::dynamic;
+  const bool settle_start = count_snap_back && damage_ && state_.start_out_of_balance;
   double settled_energy = 0.0;  // stored energy just after the last pass dropped the moduli
+  if (settle_start) {
+    settled_energy = state_.committed_stored_energy;
+    for (std::size_t d = 0; d < num_dofs; ++d)
+      state_.positions_settled[d] = model_.X[d] + model_.u[d];
+  }
   for (int pass = 1;; ++pass) {
     if (!open_close_iteration(step, retries, inertia, control)) return false;
     if (!damage_) break;
     const double released_before = energy_.attempt_damage;
     const DamageChange change = evaluate_damage();
-    if (count_snap_back && (pass > 1 || change.grown > 0)) {
+    // Without inertia the boundaries move in the first solve only; the cascade after it runs
+    // at fixed boundaries, so the step's work is done at the first solve's reactions.
+    if (pass == 1 && count_snap_back) record_first_reaction();
+    if (count_snap_back && (pass > 1 || change.grown > 0 || settle_start)) {
       const double stored = stored_energy();  // at this solve, before its modulus drop
-      if (pass > 1) {
-        double load_work = 0.0;
+      if (pass > 1 || settle_start) {
+        // The work done between the two states: in the first solve, the boundaries' and the
+        // loads' over the step's increment; later, the loads' alone (the boundaries hold).
+        double work = 0.0;
         for (std::size_t d = 0; d < num_dofs; ++d)
-          load_work += state_.f_ext[d] * (state_.positions[d] - state_.positions_settled[d]);
+          work += pass == 1 ? 0.5 *
+                                  (state_.f_ext_old[d] + state_.reaction_old[d] + state_.f_ext[d] +
+                                   state_.reaction_first[d]) *
+                                  state_.du[d]
+                            : state_.f_ext[d] * (state_.positions[d] - state_.positions_settled[d]);
         const double friction =
             contact_ ? contact_->friction_work_between(state_.positions_settled, state_.positions)
                      : 0.0;
-        energy_.attempt_snap_back += settled_energy - stored + load_work - friction;
+        energy_.attempt_snap_back += settled_energy - stored + work - friction;
       }
       settled_energy = stored - (energy_.attempt_damage - released_before);
       std::swap(state_.positions, state_.positions_settled);
     }
+    // The last pass's modulus drop is not re-solved: the next step starts from it.
+    state_.end_out_of_balance = change.grown > 0;
     if (change.newly_damaged == 0) break;
     if (pass >= scene_.fracture.max_damage_passes) {
       ++stats_.damage_limit_hits;
@@ -290,6 +312,23 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     return false;
   }
   return true;
+}
+
+void Simulation::record_first_reaction() {
+  // f_int at the solution is the damage check's (before this pass drops any modulus).
+  const std::size_t num_dofs = model_.X.size();
+  std::fill(state_.reaction_first.begin(), state_.reaction_first.end(), 0.0);
+  if (contact_) {
+    for (std::size_t d = 0; d < num_dofs; ++d)
+      state_.positions[d] = model_.X[d] + model_.u[d] + state_.du[d];
+    contact_->add_springs(state_.positions, layout_, model_.num_elements(), {},
+                          state_.reaction_first);
+  }
+  for (std::size_t d = 0; d < num_dofs; ++d)
+    state_.reaction_first[d] = bc_.prescribed[d] ? state_.damage_force[d] +
+                                                       state_.reaction_first[d] +
+                                                       state_.restraint_force[d] - state_.f_ext[d]
+                                                 : 0.0;
 }
 
 DamageChange Simulation::evaluate_damage() {
@@ -427,16 +466,22 @@ void Simulation::commit_step(double dt) {
   // leaves the balance, a loss of the method (not of the rock) that summary.json reports.
   energy_.anchor += fragments_.energy(state_.du);
   // The constraints' force on the body, and the work of all external forces (trapezoidal).
+  // Without inertia a damage cascade runs at fixed boundaries: the step's boundary work is
+  // done at the first solve's reactions (record_first_reaction), not at the fallen ones.
+  const bool first_reaction = damage_ && scene_.analysis != Analysis::dynamic;
   double work = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) {
     state_.reaction[d] = bc_.prescribed[d] ? state_.f_int[d] + state_.f_contact[d] +
                                                  state_.restraint_force[d] - state_.f_ext[d]
                                            : 0.0;
-    work += 0.5 *
-            (state_.f_ext_old[d] + state_.reaction_old[d] + state_.f_ext[d] + state_.reaction[d]) *
+    const double reaction = first_reaction ? state_.reaction_first[d] : state_.reaction[d];
+    work += 0.5 * (state_.f_ext_old[d] + state_.reaction_old[d] + state_.f_ext[d] + reaction) *
             state_.du[d];
   }
   energy_.external_work += work;
+  state_.committed_stored_energy = strain_energy(model_, model_.strain, model_.stress) +
+                                   (contact_ ? contact_->spring_energy() : 0.0);
+  state_.start_out_of_balance = state_.end_out_of_balance;
   std::swap(state_.f_ext_old, state_.f_ext);
   std::swap(state_.reaction_old, state_.reaction);
 }
@@ -449,6 +494,7 @@ void Simulation::detach_fractured_elements() {
   const Detachment detachment = detach_damaged_elements(model_, threshold, detached_);
   if (detachment.detached == 0) return;
   stats_.detached_elements += detachment.detached;
+  state_.start_out_of_balance = true;
   // Everything built on the nodes follows the split: the step state, the constraints and
   // loads (named curves carried their element sides over), probes, colouring and contacts.
   state_.follow_split_nodes(detachment.node_origin);
@@ -479,6 +525,26 @@ void Simulation::detach_fractured_elements() {
   if (contact_) contact->carry_contacts_from(*contact_);
   contact_ = std::move(contact);
   rebuild_layout();
+  recompute_committed_forces();
+}
+
+void Simulation::recompute_committed_forces() {
+  // A split node's copies took their origin's loads and constraint force: a copy that left
+  // the constraint would do work with a reaction it no longer has, and two copies would
+  // count one node's weight twice. Both are taken anew at the committed state.
+  const std::size_t num_dofs = model_.X.size();
+  compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, state_.f_int,
+                         corotational_);
+  std::fill(state_.f_contact.begin(), state_.f_contact.end(), 0.0);
+  for (std::size_t d = 0; d < num_dofs; ++d) state_.positions[d] = model_.X[d] + model_.u[d];
+  contact_->add_springs(state_.positions, layout_, model_.num_elements(), {}, state_.f_contact);
+  fragments_.forces(state_.du, state_.restraint_force);
+  for (std::size_t d = 0; d < num_dofs; ++d) {
+    state_.f_ext_old[d] = state_.load_factor * reference_loads_[d];
+    state_.reaction_old[d] = bc_.prescribed[d] ? state_.f_int[d] + state_.f_contact[d] +
+                                                     state_.restraint_force[d] - state_.f_ext_old[d]
+                                               : 0.0;
+  }
 }
 
 bool Simulation::Softening::observe(long at_step, double at_time, double v, double drop) {

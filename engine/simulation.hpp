@@ -108,6 +108,10 @@ class Simulation {
   /// Energy the rock and its springs hold at the increment du (J): elements (from model_'s
   /// strain and stress), contacts and fragment restraint. Fills state_.positions with X + u + du.
   double stored_energy();
+  /// Fills state_.reaction_first: the constraints' force at the first solve of the step.
+  void record_first_reaction();
+  /// After nodes split: loads and constraint forces of the committed state on the new nodes.
+  void recompute_committed_forces();
   /// Force scale of the committed state (N): the largest element edge force, load or reaction.
   double element_force_scale() const;
   EnergyBalance energy() const;

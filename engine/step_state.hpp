@@ -14,6 +14,8 @@ struct StepState {
   std::vector<double> f_int, f_ext;            // internal force at the trial or committed u; loads
   std::vector<double> f_ext_old;               // loads of the last committed step
   std::vector<double> reaction, reaction_old;  // constraint forces: this step, last committed
+  std::vector<double> reaction_first;          // constraint forces after the step's first
+                                               // solve, before its damage cascade
   std::vector<double> u_trial;                 // committed u plus the prescribed increment
   std::vector<double> du;                      // the step's displacement increment
   std::vector<double> f_contact;               // contact spring forces at the trial state
@@ -24,6 +26,11 @@ struct StepState {
                                                // the moduli (the snap-back's start)
   std::vector<double> rhs;                     // per equation: the solve's right side and answer
   std::vector<std::uint8_t> held_nodes;        // per node: prescribed or in a closed contact
+  double load_factor = 0.0;                    // of the step attempted (committed, after it)
+  double committed_stored_energy = 0.0;        // elements and contact springs at the commit
+  bool end_out_of_balance = false;   // the attempt's last pass dropped moduli, not re-solved
+  bool start_out_of_balance = false;  // the committed state is no equilibrium: as above, or
+                                      // nodes split after it
   std::vector<double> committed_strain, committed_stress;  // per element (3 each), at the
                                                            // committed u: dynamic damage energy
 

@@ -85,6 +85,30 @@ TEST(UniaxialCompression, StressStrainCurveRisesPeaksAndSoftens) {
   EXPECT_EQ(run.result.summary.at("detached_elements").get<long>(), broken);
 }
 
+TEST(UniaxialCompression, EnergyBalanceHoldsThroughTheCollapse) {
+  // Issue 11: work = strain (elements and contact springs) + kinetic + dissipated (damage,
+  // friction) + snap-back at every step, to 2 % of the work done so far, through the
+  // collapse to 70 % softening. Seeds 2 and 4 collapse through split nodes at the platen and
+  // blocks that turn in a step: before the fixes (docs/method-choices.md, "Energy balance",
+  // "Large rotations") seed 2 left 2.1 % at its last step on this mesh (the work of a split
+  // platen node's copy that had left the constraint), and the paper's mesh 660 %. Measured:
+  // at most 0.04 % on seeds 1-4.
+  for (const char* seed : {"material.0.seed=2", "material.0.seed=4"}) {
+    SCOPED_TRACE(seed);
+    const auto run = test::run_data_scene("uniaxial_compression.toml", coarse({seed}));
+    ASSERT_TRUE(run.result.ok) << run.result.reason;
+    const auto& h = run.history;
+    const auto& work = h.at("energy.external_work");
+    for (std::size_t i = 1; i < work.size(); ++i) {
+      const double gap = work[i] - h.at("energy.strain")[i] - h.at("energy.kinetic")[i] -
+                         h.at("energy.dissipated")[i] - h.at("energy.snap_back")[i];
+      EXPECT_LE(std::abs(gap), 0.02 * work[i]) << "step " << h.at("step")[i];
+    }
+    EXPECT_LT(std::abs(run.result.summary.at("energy").at("unaccounted").get<double>()),
+              0.02 * work.back());
+  }
+}
+
 TEST(UniaxialCompression, StrainOnsetRunsToSofteningWithoutCollapsingTheStep) {
   // tension_onset = "strain" (eps_bar >= ft0 / E0, METHOD.md) fires in compression from the
   // lateral strain, long before the stress onset. Issue 11: it once collapsed dt (to 1e-6 s).
