@@ -644,7 +644,7 @@ RunResult Simulation::run(const RunOptions& options) {
   std::unique_ptr<RunOutputs> outputs;
   if (options.write_outputs)
     outputs = std::make_unique<RunOutputs>(scene_, run_folder(scene_, options), probes_->columns(),
-                                           probes_->has_line_probes());
+                                           probes_->has_line_probes(), options.write_frames);
 
   // Step 0: the initial state.
   const double initial_factor = load_factor(scene_.analysis, 0.0, end_time);

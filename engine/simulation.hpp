@@ -47,6 +47,7 @@ struct RunOptions {
   std::filesystem::path out_dir;   // the run folder itself; empty: <out_root>/<scene name>
   int threads = 0;                 // 0: every hardware thread
   bool write_outputs = true;
+  bool write_frames = true;  // VTU frames (history, profiles and summary come regardless)
   std::function<void(const StepReport&, const Model&)> on_step;
 };
 

@@ -1,5 +1,4 @@
 // rockdd command line: a thin client of the engine library (engine/rockdd.hpp).
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -9,10 +8,10 @@
 #include <iostream>
 #include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "engine/rockdd.hpp"
+#include "tools/monte_carlo_command.hpp"
 
 namespace {
 
@@ -21,7 +20,9 @@ constexpr const char* kUsage =
     "  rockdd run SCENE [--out DIR] [--threads N] [--set key.path=value ...] [--quiet]\n"
     "  rockdd check SCENE [--set key.path=value ...]\n"
     "  rockdd mc SCENE --realizations N [--first-seed S] [--threads N] [--jobs J]\n"
-    "                  [--out DIR] [--set key.path=value ...] [--quiet]\n"
+    "                  [--out DIR] [--shard I/N] [--restart] [--frames]\n"
+    "                  [--set key.path=value ...] [--quiet]\n"
+    "  rockdd mc-merge OUTDIR DIR1 DIR2 ...   # join the shards' mc.csv into OUTDIR\n"
     "  rockdd --version | --help\n"
     "exit status: 0 success, 1 the run failed numerically, 2 bad input\n";
 
@@ -35,6 +36,9 @@ struct Command {
   long realizations = 0;
   std::optional<long> first_seed;
   int jobs = 0;  // mc: realizations run at once (0: one per thread)
+  std::optional<rockdd::Shard> shard;
+  bool restart = false, frames = false;
+  std::vector<std::string> folders;  // mc-merge: OUTDIR then the shard folders
 };
 
 /// Bad command line: usage error, exit 2.
@@ -51,11 +55,26 @@ long parse_integer(const std::string& flag, const char* text, long min) {
   return value;
 }
 
+/// --shard I/N: part I (1-based) of N.
+rockdd::Shard parse_shard(const std::string& text) {
+  const std::size_t slash = text.find('/');
+  const auto number = [](const std::string& part) -> long {
+    char* end = nullptr;
+    const long value = std::strtol(part.c_str(), &end, 10);
+    return part.empty() || *end != '\0' ? 0 : value;
+  };
+  if (slash != std::string::npos) {
+    const long i = number(text.substr(0, slash)), n = number(text.substr(slash + 1));
+    if (n >= 1 && i >= 1 && i <= n) return {i, n};
+  }
+  throw UsageError{"--shard expects I/N with 1 <= I <= N (part I of N), got '" + text + "'"};
+}
+
 Command parse_command_line(int argc, char** argv) {
   if (argc < 2) throw UsageError{"missing command"};
   Command cmd;
   cmd.verb = argv[1];
-  if (cmd.verb != "run" && cmd.verb != "check" && cmd.verb != "mc")
+  if (cmd.verb != "run" && cmd.verb != "check" && cmd.verb != "mc" && cmd.verb != "mc-merge")
     throw UsageError{"unknown command '" + cmd.verb + "'"};
   for (int i = 2; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -77,17 +96,34 @@ Command parse_command_line(int argc, char** argv) {
       cmd.first_seed = parse_integer(arg, value(), 0);
     else if (arg == "--jobs")
       cmd.jobs = static_cast<int>(parse_integer(arg, value(), 1));
+    else if (arg == "--shard")
+      cmd.shard = parse_shard(value());
+    else if (arg == "--restart")
+      cmd.restart = true;
+    else if (arg == "--frames")
+      cmd.frames = true;
     else if (!arg.empty() && arg[0] == '-')
       throw UsageError{"unknown option '" + arg + "'"};
+    else if (cmd.verb == "mc-merge")
+      cmd.folders.push_back(arg);
     else if (cmd.scene.empty())
       cmd.scene = arg;
     else
       throw UsageError{"unexpected argument '" + arg + "'"};
   }
+  if (cmd.verb == "mc-merge") {
+    if (cmd.folders.size() < 2) throw UsageError{"mc-merge needs OUTDIR and at least one DIR"};
+    if (cmd.realizations > 0 || cmd.first_seed || cmd.jobs > 0 || cmd.shard || cmd.restart ||
+        cmd.frames || cmd.out || cmd.threads > 0 || !cmd.overrides.empty())
+      throw UsageError{"mc-merge takes only OUTDIR, the shard folders and --quiet"};
+    return cmd;
+  }
   if (cmd.scene.empty()) throw UsageError{"missing SCENE file"};
   if (cmd.verb == "mc" && cmd.realizations == 0) throw UsageError{"mc needs --realizations N"};
-  if (cmd.verb != "mc" && (cmd.realizations > 0 || cmd.first_seed || cmd.jobs > 0))
-    throw UsageError{"--realizations, --first-seed and --jobs belong to mc"};
+  if (cmd.verb != "mc" && (cmd.realizations > 0 || cmd.first_seed || cmd.jobs > 0 || cmd.shard ||
+                           cmd.restart || cmd.frames))
+    throw UsageError{
+        "--realizations, --first-seed, --jobs, --shard, --restart and --frames belong to mc"};
   return cmd;
 }
 
@@ -151,89 +187,21 @@ int run(const Command& cmd) {
   return 0;
 }
 
-/// Runs realization `r` of a Monte Carlo plan into its folder; prints one line on stderr.
-/// Returns false when it failed numerically.
-bool run_realization(const rockdd::Scene& scene, const rockdd::MonteCarloPlan& plan, long r,
-                     int threads, bool quiet) {
-  const std::uint64_t seed = plan.seed(r);
-  const rockdd::Scene realization = rockdd::realization_scene(scene, seed);
-  rockdd::Simulation sim(realization, rockdd::build_scene_model(realization));
-  rockdd::RunOptions options;
-  options.out_dir = plan.realization_dir(seed);
-  options.threads = threads;
-  const rockdd::RunResult result = sim.run(options);
-  if (!quiet) {
-    const std::string line = "rockdd mc: seed " + std::to_string(seed) + ": " +
-                             (result.ok ? "ok" : "failed: " + result.reason) + " (" +
-                             std::to_string(result.summary["wall_seconds"].get<double>()) + " s)\n";
-    std::fputs(line.c_str(), stderr);  // one write per line: workers do not interleave
-  }
-  return result.ok;
-}
-
-/// Monte Carlo over seeds: `jobs` worker processes (a fork each, so that every realization
-/// has the engine's process-wide settings to itself) share the realizations round-robin;
-/// the parent then gathers the summaries into mc.csv and mc.json.
+/// rockdd mc: tools/monte_carlo_command.cpp.
 int monte_carlo(const Command& cmd) {
-  const rockdd::Scene scene = rockdd::load_scene(cmd.scene, cmd.overrides);
-  const rockdd::MonteCarloPlan plan = rockdd::plan_monte_carlo(
-      scene, cmd.realizations,
-      cmd.first_seed ? std::optional<std::uint64_t>(static_cast<std::uint64_t>(*cmd.first_seed))
-                     : std::nullopt,
-      cmd.out ? std::filesystem::path(*cmd.out) : std::filesystem::path());
-  const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int threads = cmd.threads > 0 ? cmd.threads : hardware;
-  const int jobs =
-      static_cast<int>(std::min<long>(cmd.realizations, cmd.jobs > 0 ? cmd.jobs : threads));
-  const int threads_per_run = std::max(1, threads / jobs);
-  std::filesystem::create_directories(plan.dir);
-  if (!cmd.quiet)
-    std::cerr << "rockdd mc: " << cmd.realizations << " realizations of " << scene.name
-              << ", seeds " << plan.first_seed << ".." << plan.seed(cmd.realizations - 1) << ", "
-              << jobs << " at a time on " << threads_per_run << " thread(s) each\n";
-  // The parent has run no engine code yet (no thread pools to lose in a fork).
-  std::vector<pid_t> workers;
-  for (int w = 0; w < jobs && jobs > 1; ++w) {
-    const pid_t pid = fork();
-    if (pid < 0) throw std::runtime_error("mc: fork failed");
-    if (pid == 0) {
-      int status = 0;
-      // A realization that throws leaves no summary.json (mc.csv reports it as crashed);
-      // the worker goes on with its other realizations. Bad input stops it: it is the
-      // same for every seed.
-      for (long r = w; r < cmd.realizations && status != 2; r += jobs) {
-        try {
-          run_realization(scene, plan, r, threads_per_run, cmd.quiet);
-        } catch (const rockdd::InputError& e) {
-          std::cerr << "rockdd: error: " << e.what() << '\n';
-          status = 2;
-        } catch (const std::exception& e) {
-          std::cerr << "rockdd mc: seed " << plan.seed(r) << ": " << e.what() << '\n';
-          status = 1;
-        }
-      }
-      std::fflush(stderr);
-      _exit(status);
-    }
-    workers.push_back(pid);
-  }
-  if (jobs == 1)
-    for (long r = 0; r < cmd.realizations; ++r)
-      run_realization(scene, plan, r, threads_per_run, cmd.quiet);
-  bool bad_input = false;
-  for (const pid_t pid : workers) {
-    int status = 0;
-    waitpid(pid, &status, 0);
-    bad_input = bad_input || (WIFEXITED(status) && WEXITSTATUS(status) == 2);
-  }
-  if (bad_input) return 2;
-  const nlohmann::json report = rockdd::write_monte_carlo_report(scene, plan);
-  const long failed = report["failed"].get<long>();
-  if (!cmd.quiet)
-    std::cerr << "rockdd mc: " << report["ok"].get<long>() << " ok, " << failed
-              << " failed; table in " << (plan.dir / "mc.csv").string() << ", statistics in "
-              << (plan.dir / "mc.json").string() << '\n';
-  return failed > 0 ? 1 : 0;
+  rockdd::cli::MonteCarloOptions options;
+  options.scene = cmd.scene;
+  options.overrides = cmd.overrides;
+  options.realizations = cmd.realizations;
+  if (cmd.first_seed) options.first_seed = static_cast<std::uint64_t>(*cmd.first_seed);
+  options.threads = cmd.threads;
+  options.jobs = cmd.jobs;
+  if (cmd.out) options.out = *cmd.out;
+  options.shard = cmd.shard.value_or(rockdd::Shard{});
+  options.restart = cmd.restart;
+  options.frames = cmd.frames;
+  options.quiet = cmd.quiet;
+  return rockdd::cli::monte_carlo(options);
 }
 
 int check(const Command& cmd) {
@@ -270,6 +238,9 @@ int main(int argc, char** argv) {
     const Command cmd = parse_command_line(argc, argv);
     if (cmd.verb == "run") return run(cmd);
     if (cmd.verb == "check") return check(cmd);
+    if (cmd.verb == "mc-merge")
+      return rockdd::cli::monte_carlo_merge(
+          cmd.folders.front(), {cmd.folders.begin() + 1, cmd.folders.end()}, cmd.quiet);
     return monte_carlo(cmd);
   } catch (const UsageError& e) {
     std::cerr << "rockdd: " << e.message << '\n' << kUsage;

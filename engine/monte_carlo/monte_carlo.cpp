@@ -1,26 +1,30 @@
 #include "engine/monte_carlo/monte_carlo.hpp"
 
 #include <algorithm>
-#include <cmath>
-#include <fstream>
 #include <map>
-#include <sstream>
 
 #include "engine/errors.hpp"
+#include "engine/monte_carlo/ensemble_statistics.hpp"
 #include "engine/number_format.hpp"
 #include "engine/output/atomic_file.hpp"
 
 namespace rockdd {
 namespace {
 
-bool heterogeneous(const MaterialSpec& m) { return m.homogeneity && !m.heterogeneous.empty(); }
+bool heterogeneous(const MaterialSpec& m) {
+  return m.homogeneity && !m.heterogeneous.empty();
+}
+
+/// The summary counters that mc.csv tabulates under their own names.
+constexpr const char* kCounters[] = {
+    "wall_seconds",     "steps", "redone_steps", "open_close_iterations", "damage_iterations",
+    "damaged_elements", "blocks"};
 
 /// The numbers of one realization's summary that mc.csv tabulates, by column name: counts,
 /// wall time, the first damage, the peak of every probe column and the softening peak.
 std::map<std::string, double> tabulated(const nlohmann::json& summary) {
   std::map<std::string, double> row;
-  for (const char* key : {"wall_seconds", "steps", "redone_steps", "open_close_iterations",
-                          "damage_iterations", "damaged_elements", "blocks"})
+  for (const char* key : kCounters)
     if (summary.contains(key) && summary[key].is_number()) row[key] = summary[key].get<double>();
   if (summary.contains("first_damage") && summary["first_damage"].is_object())
     row["first_damage.time"] = summary["first_damage"]["time"].get<double>();
@@ -34,15 +38,17 @@ std::map<std::string, double> tabulated(const nlohmann::json& summary) {
   return row;
 }
 
-/// A CSV cell: quoted when it holds a comma or a quote.
-std::string csv_cell(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string out = "\"";
-  for (const char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return out + "\"";
+}  // namespace
+
+std::string Shard::text() const {
+  return count == 1 ? std::string() : std::to_string(index) + "/" + std::to_string(count);
 }
 
-}  // namespace
+std::vector<std::uint64_t> MonteCarloPlan::seeds() const {
+  std::vector<std::uint64_t> out;
+  for (long r = shard.index - 1; r < realizations; r += shard.count) out.push_back(seed(r));
+  return out;
+}
 
 std::filesystem::path MonteCarloPlan::realization_dir(std::uint64_t s) const {
   return dir / ("seed_" + std::to_string(s));
@@ -50,7 +56,7 @@ std::filesystem::path MonteCarloPlan::realization_dir(std::uint64_t s) const {
 
 MonteCarloPlan plan_monte_carlo(const Scene& scene, long realizations,
                                 std::optional<std::uint64_t> first_seed,
-                                const std::filesystem::path& out_root) {
+                                const std::filesystem::path& out_root, Shard shard) {
   const auto first = std::find_if(scene.materials.begin(), scene.materials.end(), heterogeneous);
   if (first == scene.materials.end())
     throw InputError(scene.file.string(), "material",
@@ -59,6 +65,7 @@ MonteCarloPlan plan_monte_carlo(const Scene& scene, long realizations,
   MonteCarloPlan plan;
   plan.first_seed = first_seed.value_or(first->seed);
   plan.realizations = realizations;
+  plan.shard = shard;
   plan.dir = (out_root.empty() ? scene.output.dir : out_root) / scene.name;
   return plan;
 }
@@ -70,73 +77,64 @@ Scene realization_scene(const Scene& scene, std::uint64_t seed) {
   return out;
 }
 
-nlohmann::json write_monte_carlo_report(const Scene& scene, const MonteCarloPlan& plan) {
-  std::vector<nlohmann::json> summaries;
-  std::vector<std::string> columns;  // in first-seen order
-  std::vector<std::map<std::string, double>> rows;
-  for (long r = 0; r < plan.realizations; ++r) {
-    const std::filesystem::path file = plan.realization_dir(plan.seed(r)) / "summary.json";
-    nlohmann::json summary;
-    std::ifstream in(file);
-    try {
-      if (in) summary = nlohmann::json::parse(in);
-    } catch (const nlohmann::json::exception&) {
-      summary = nullptr;
-    }
-    if (!summary.is_object())
-      summary = {{"status", "failed"}, {"reason", "no readable summary.json (the run crashed)"}};
-    rows.push_back(tabulated(summary));
-    for (const auto& [column, value] : rows.back())
-      if (std::find(columns.begin(), columns.end(), column) == columns.end())
-        columns.push_back(column);
-    summaries.push_back(std::move(summary));
+std::vector<std::string> ensemble_columns(const Scene& scene) {
+  std::vector<std::string> columns(std::begin(kCounters), std::end(kCounters));
+  if (std::any_of(scene.materials.begin(), scene.materials.end(),
+                  [](const MaterialSpec& m) { return m.has_damage(); }))
+    columns.push_back("first_damage.time");
+  for (const ProbeSpec& probe : scene.probes)
+    if (probe.kind != ProbeSpec::Kind::line)
+      for (const std::string& field : probe.fields)
+        columns.push_back("peaks." + probe.name + "." + field);
+  if (scene.time.stop_at_softening) {
+    columns.push_back("softening.peak");
+    columns.push_back("softening.peak_time");
   }
+  // By name, as the table has always been ordered.
+  std::sort(columns.begin(), columns.end());
+  return columns;
+}
 
-  std::ostringstream csv;
-  csv << "seed,status";
-  for (const std::string& c : columns) csv << ',' << csv_cell(c);
-  csv << ",reason\n";
-  long ok = 0;
-  std::map<std::string, std::vector<double>> values;  // over the realizations that ran to the end
-  for (long r = 0; r < plan.realizations; ++r) {
-    const nlohmann::json& s = summaries[static_cast<std::size_t>(r)];
-    const bool run_ok = s.value("status", "failed") == "ok";
-    ok += run_ok;
-    csv << plan.seed(r) << ',' << (run_ok ? "ok" : "failed");
-    for (const std::string& c : columns) {
-      const auto found = rows[static_cast<std::size_t>(r)].find(c);
-      csv << ',';
-      if (found == rows[static_cast<std::size_t>(r)].end()) continue;
-      csv << format_number(found->second);
-      if (run_ok) values[c].push_back(found->second);
-    }
-    csv << ',' << csv_cell(s.value("reason", "")) << '\n';
-  }
-  write_file_atomically(plan.dir / "mc.csv", csv.str());
-
-  nlohmann::json statistics = nlohmann::json::object();
+EnsembleRow realization_row(const std::vector<std::string>& columns, std::uint64_t seed,
+                            const nlohmann::json& summary) {
+  EnsembleRow row;
+  row.seed = seed;
+  row.status = summary.value("status", "failed") == "ok" ? "ok" : "failed";
+  row.reason = summary.value("reason", "");
+  const std::map<std::string, double> numbers = tabulated(summary);
   for (const std::string& c : columns) {
-    const std::vector<double>& v = values[c];
-    if (v.empty()) continue;
-    const double n = static_cast<double>(v.size());
-    double mean = 0.0;
-    for (const double x : v) mean += x / n;
-    double variance = 0.0;
-    for (const double x : v) variance += (x - mean) * (x - mean);
-    const double stddev = v.size() > 1 ? std::sqrt(variance / (n - 1.0)) : 0.0;
-    statistics[c] = {{"mean", mean},
-                     {"std", stddev},
-                     {"min", *std::min_element(v.begin(), v.end())},
-                     {"max", *std::max_element(v.begin(), v.end())},
-                     {"count", v.size()}};
+    const auto found = numbers.find(c);
+    row.cells.push_back(found == numbers.end() ? std::string() : format_number(found->second));
   }
-  nlohmann::json report = {{"scene", scene.name},
-                           {"realizations", plan.realizations},
-                           {"first_seed", plan.first_seed},
-                           {"ok", ok},
-                           {"failed", plan.realizations - ok},
-                           {"statistics", statistics}};
-  write_file_atomically(plan.dir / "mc.json", report.dump(2) + "\n");
+  return row;
+}
+
+EnsembleRow crashed_row(const std::vector<std::string>& columns, std::uint64_t seed,
+                        const std::string& reason) {
+  return {seed, "crashed", std::vector<std::string>(columns.size()), reason};
+}
+
+nlohmann::json ensemble_report(const EnsembleIdentity& identity, const EnsembleTable& table) {
+  const std::vector<EnsembleRow> rows = latest_rows(table.rows);
+  const auto count = [&](const char* status) {
+    return std::count_if(rows.begin(), rows.end(),
+                         [&](const EnsembleRow& r) { return r.status == status; });
+  };
+  const long ok = count("ok");
+  return {{"scene", identity.scene},
+          {"realizations", rows.size()},
+          {"first_seed", identity.first_seed},
+          {"hash", identity.hash()},
+          {"ok", ok},
+          {"failed", static_cast<long>(rows.size()) - ok},  // crashed ones included
+          {"crashed", count("crashed")},
+          {"statistics", ensemble_statistics(table.columns, rows)}};
+}
+
+nlohmann::json write_ensemble_report(const std::filesystem::path& dir,
+                                     const EnsembleIdentity& identity) {
+  const nlohmann::json report = ensemble_report(identity, read_ensemble_table(dir / "mc.csv"));
+  write_file_atomically(dir / "mc.json", report.dump(2) + "\n");
   return report;
 }
 

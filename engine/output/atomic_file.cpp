@@ -1,5 +1,6 @@
 #include "engine/output/atomic_file.hpp"
 
+#include <fcntl.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -26,7 +27,44 @@ std::runtime_error io_error(const std::string& what, const std::filesystem::path
   return std::runtime_error(what + " '" + path.string() + "': " + reason);
 }
 
+/// Writes all of `content` to `fd` (write() may take less than asked); false on error.
+bool write_all(int fd, std::string_view content) {
+  while (!content.empty()) {
+    const ssize_t n = ::write(fd, content.data(), content.size());
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    content.remove_prefix(static_cast<std::size_t>(n));
+  }
+  return true;
+}
+
 }  // namespace
+
+void write_file_durably(const std::filesystem::path& path, std::string_view content) {
+  const std::filesystem::path temp = temp_path_for(path);
+  const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd < 0) throw io_error("cannot create temporary file for", path, errno);
+  const bool written = write_all(fd, content) && ::fsync(fd) == 0;
+  const int err = errno;
+  ::close(fd);
+  std::error_code ec;
+  if (!written) {
+    std::filesystem::remove(temp, ec);
+    throw io_error("cannot write", path, err);
+  }
+  std::filesystem::rename(temp, path, ec);
+  if (ec) {
+    std::filesystem::remove(temp, ec);
+    throw io_error("cannot rename temporary file to", path, ec.value());
+  }
+  // The rename itself is durable only once the folder is.
+  const std::filesystem::path folder = path.has_parent_path() ? path.parent_path() : ".";
+  const int dir_fd = ::open(folder.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (dir_fd >= 0) {
+    ::fsync(dir_fd);
+    ::close(dir_fd);
+  }
+}
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
   AtomicFile file(path);

@@ -9,6 +9,10 @@ namespace rockdd {
 /// Writes `content` to `path` through a temporary file in the same folder and a rename.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
+/// write_file_atomically that also survives a power cut: the temporary file is fsync'ed
+/// before the rename and the folder after it. Throws std::runtime_error on I/O failure.
+void write_file_durably(const std::filesystem::path& path, std::string_view content);
+
 /// A file written in pieces; it appears under its name only on commit().
 /// Destroyed uncommitted, it removes its temporary file and leaves nothing behind.
 class AtomicFile {

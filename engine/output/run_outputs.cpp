@@ -12,8 +12,8 @@
 namespace rockdd {
 
 RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
-                       const std::vector<std::string>& probe_columns, bool line_probes)
-    : dir_(dir), fields_(scene.output.fields), columns_(probe_columns) {
+                       const std::vector<std::string>& probe_columns, bool line_probes, bool frames)
+    : dir_(dir), fields_(scene.output.fields), columns_(probe_columns), write_frames_(frames) {
   // Frames and profiles of an earlier run in the same folder would mix with this run's (a
   // longer earlier run leaves frames past this one's end): they are removed first.
   for (const char* folder : {"frames", "profiles"}) {
@@ -26,7 +26,16 @@ RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
         if (ours) std::filesystem::remove(entry.path(), ignored);
       }
   }
-  std::filesystem::create_directories(dir_ / "frames");
+  if (write_frames_) {
+    std::filesystem::create_directories(dir_ / "frames");
+  } else {
+    // An earlier run's frames were just removed: their list goes too, and their folder
+    // unless something else is in it.
+    std::error_code ignored;
+    std::filesystem::remove(dir_ / "frames.pvd", ignored);
+    std::filesystem::remove(dir_ / "frames", ignored);
+    std::filesystem::create_directories(dir_);
+  }
   if (line_probes) std::filesystem::create_directories(dir_ / "profiles");
   history_ = std::make_unique<AtomicFile>(dir_ / "history.csv");
   auto& out = history_->stream();
@@ -53,6 +62,7 @@ void RunOutputs::history_row(long step, double time, double dt,
 }
 
 void RunOutputs::frame(const Model& model, long step, double time) {
+  if (!write_frames_) return;
   const auto num_nodes = static_cast<std::size_t>(model.num_nodes());
   const auto num_elements = static_cast<std::size_t>(model.num_elements());
   std::vector<double> points(2 * num_nodes);

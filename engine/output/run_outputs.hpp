@@ -27,8 +27,10 @@ struct EnergyBalance {
 class RunOutputs {
  public:
   /// Creates the run folder `dir` (and frames/, profiles/ when needed) and starts history.csv.
+  /// Without `frames`, frame() writes nothing (rockdd mc's default: an ensemble's VTU files
+  /// would dwarf its tables).
   RunOutputs(const Scene& scene, const std::filesystem::path& dir,
-             const std::vector<std::string>& probe_columns, bool line_probes);
+             const std::vector<std::string>& probe_columns, bool line_probes, bool frames = true);
   ~RunOutputs();
   RunOutputs(const RunOutputs&) = delete;
   RunOutputs& operator=(const RunOutputs&) = delete;
@@ -36,7 +38,8 @@ class RunOutputs {
   /// Appends one history row and updates the probe peaks.
   void history_row(long step, double time, double dt, const std::vector<double>& probe_values,
                    const EnergyBalance& energy);
-  /// Writes frames/frame_<step>.vtu with the scene's output fields, and rewrites frames.pvd.
+  /// Writes frames/frame_<step>.vtu with the scene's output fields, and rewrites frames.pvd
+  /// (nothing when frames are off).
   void frame(const Model& model, long step, double time);
   /// Largest magnitude seen of each probe column.
   const std::map<std::string, double>& peaks() const { return peaks_; }
@@ -52,6 +55,7 @@ class RunOutputs {
   std::map<std::string, double> peaks_;
   std::unique_ptr<AtomicFile> history_;
   std::vector<std::pair<double, std::string>> frames_;
+  bool write_frames_ = true;
 };
 
 }  // namespace rockdd

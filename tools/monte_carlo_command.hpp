@@ -1,0 +1,36 @@
+#pragma once
+// rockdd mc and rockdd mc-merge: the ensemble's worker processes, its table and progress.
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/rockdd.hpp"
+
+namespace rockdd::cli {
+
+/// rockdd mc's command line.
+struct MonteCarloOptions {
+  std::string scene;
+  std::vector<std::string> overrides;
+  long realizations = 0;
+  std::optional<std::uint64_t> first_seed;
+  int threads = 0;  // 0: every hardware thread
+  int jobs = 0;     // realizations at once; 0: one per thread
+  std::optional<std::filesystem::path> out;
+  Shard shard;
+  bool restart = false;  // discard the rows of an earlier run
+  bool frames = false;   // VTU frames of every realization
+  bool quiet = false;
+};
+
+/// Runs the seeds of `options` that mc.csv has no completed row for; returns the exit
+/// status: 0 every seed ok, 1 some failed or crashed, 2 bad input.
+int monte_carlo(const MonteCarloOptions& options);
+
+/// rockdd mc-merge OUTDIR DIR...; returns the exit status (bad input throws InputError).
+int monte_carlo_merge(const std::filesystem::path& out_dir,
+                      const std::vector<std::filesystem::path>& shard_dirs, bool quiet);
+
+}  // namespace rockdd::cli
