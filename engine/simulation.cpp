@@ -325,10 +325,10 @@ void Simulation::record_first_reaction() {
                           state_.reaction_first);
   }
   for (std::size_t d = 0; d < num_dofs; ++d)
-    state_.reaction_first[d] = bc_.prescribed[d] ? state_.damage_force[d] +
-                                                       state_.reaction_first[d] +
-                                                       state_.restraint_force[d] - state_.f_ext[d]
-                                                 : 0.0;
+    state_.reaction_first[d] = bc_.prescribed[d]
+                                   ? state_.damage_force[d] + state_.reaction_first[d] +
+                                         state_.restraint_force[d] - state_.f_ext[d]
+                                   : 0.0;
 }
 
 DamageChange Simulation::evaluate_damage() {

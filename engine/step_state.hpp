@@ -28,7 +28,7 @@ struct StepState {
   std::vector<std::uint8_t> held_nodes;        // per node: prescribed or in a closed contact
   double load_factor = 0.0;                    // of the step attempted (committed, after it)
   double committed_stored_energy = 0.0;        // elements and contact springs at the commit
-  bool end_out_of_balance = false;   // the attempt's last pass dropped moduli, not re-solved
+  bool end_out_of_balance = false;    // the attempt's last pass dropped moduli, not re-solved
   bool start_out_of_balance = false;  // the committed state is no equilibrium: as above, or
                                       // nodes split after it
   std::vector<double> committed_strain, committed_stress;  // per element (3 each), at the

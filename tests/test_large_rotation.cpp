@@ -131,8 +131,8 @@ TEST(RotationCorrection, TurnsAFreeBlockExactlyAndLeavesAHeldOneWhereTheSolveBal
   correct_block_rotations(model, u, held, du, v, a);
   for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
     const double r0 = std::hypot(model.X[2 * n] - cx, model.X[2 * n + 1] - cy);
-    const double r1 = std::hypot(model.X[2 * n] + du[2 * n] - cx,
-                                 model.X[2 * n + 1] + du[2 * n + 1] - cy);
+    const double r1 =
+        std::hypot(model.X[2 * n] + du[2 * n] - cx, model.X[2 * n + 1] + du[2 * n + 1] - cy);
     EXPECT_NEAR(r1, r0, 1e-12);
   }
   du = linear;
