@@ -537,7 +537,7 @@ void Simulation::recompute_committed_forces() {
                          corotational_);
   std::fill(state_.f_contact.begin(), state_.f_contact.end(), 0.0);
   for (std::size_t d = 0; d < num_dofs; ++d) state_.positions[d] = model_.X[d] + model_.u[d];
-  contact_->add_springs(state_.positions, layout_, model_.num_elements(), {}, state_.f_contact);
+  contact_->add_committed_forces(state_.positions, state_.f_contact);
   fragments_.forces(state_.du, state_.restraint_force);
   for (std::size_t d = 0; d < num_dofs; ++d) {
     state_.f_ext_old[d] = state_.load_factor * reference_loads_[d];

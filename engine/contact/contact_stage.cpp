@@ -599,6 +599,19 @@ double ContactStage::friction_work_between(std::span<const double> from,
   return work;
 }
 
+void ContactStage::add_committed_forces(std::span<const double> positions,
+                                        std::span<double> force) const {
+  for (const Contact& c : contacts_) {
+    if (c.state == ContactState::open) continue;
+    add_to_nodes(c, c.g, parameters_.normal_stiffness * linear_gap(c, positions), force);
+    const double shear =
+        c.state == ContactState::locked
+            ? parameters_.shear_stiffness * c.shear_spring
+            : -c.friction_force + c.slide_stiffness * (step_slip(c, positions) - c.slide_slip);
+    add_to_nodes(c, c.t, shear, force);
+  }
+}
+
 void ContactStage::commit(std::span<const double> positions) {
   const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
   spring_energy_ = 0.0;

@@ -104,6 +104,10 @@ class ContactStage {
   /// Commits a converged step ending at `positions`: the elastic slip of locked contacts
   /// accumulates, other contacts forget theirs.
   void commit(std::span<const double> positions);
+  /// Adds to `force` (2 per node) the forces of the closed contacts at `positions` after
+  /// commit(): a locked contact's shear is its committed elastic slip, which add_springs
+  /// would count twice with the step's slip.
+  void add_committed_forces(std::span<const double> positions, std::span<double> force) const;
 
   /// Sets `node_mask[n]` to 1 for every node (vertex or edge end) of a closed contact.
   void mark_touching_nodes(std::span<std::uint8_t> node_mask) const;
