@@ -688,7 +688,7 @@ RunResult Simulation::run(const RunOptions& options) {
 
   RunResult result;
   double t = 0.0;
-  bool frame_written = false;  // the failing step's frame is already out
+  bool frame_written = false;      // the failing step's frame is already out
   bool stopped_by_caller = false;  // options.keep_going said false
   const long planned = std::lround(end_time / scene_.time.dt);
   try {
