@@ -688,7 +688,8 @@ RunResult Simulation::run(const RunOptions& options) {
 
   RunResult result;
   double t = 0.0;
-  bool frame_written = false;  // the failing step's frame is already out
+  bool frame_written = false;      // the failing step's frame is already out
+  bool stopped_by_caller = false;  // options.keep_going said false
   const long planned = std::lround(end_time / scene_.time.dt);
   try {
     while (t < end_time * (1.0 - 1e-12)) {
@@ -719,13 +720,16 @@ RunResult Simulation::run(const RunOptions& options) {
       t += dt;
       stats_.steps = step;
       control.accept(true);
-      const bool last = t >= end_time * (1.0 - 1e-12);
+      const StepReport report{step, t, dt, end_time, planned};
+      if (!fracture_failure && options.keep_going && !options.keep_going(report, model_))
+        stopped_by_caller = true;
+      const bool last = t >= end_time * (1.0 - 1e-12) || stopped_by_caller;
       const bool stop = record(step, t, dt, last || fracture_failure.has_value());
       if (fracture_failure) {
         frame_written = true;
         throw *fracture_failure;
       }
-      if (options.on_step) options.on_step({step, t, dt, end_time, planned}, model_);
+      if (options.on_step) options.on_step(report, model_);
       if (stop) break;
     }
   } catch (const RunFailure& failure) {
@@ -741,6 +745,7 @@ RunResult Simulation::run(const RunOptions& options) {
   result.summary = summary(result, wall, threads);
   result.summary["dt_changes"] = control.changes();
   if (watch_softening) result.summary["softening"] = softening_.summary(scene_.time);
+  if (stopped_by_caller) result.summary["stopped_by_caller"] = true;
   if (outputs) {
     for (const auto& [column, peak] : outputs->peaks()) result.summary["peaks"][column] = peak;
     outputs->finish(result.summary);

@@ -41,7 +41,7 @@ struct StepReport {
   long num_steps = 0;  // planned steps; 0 when time-driven
 };
 
-/// How to run: where outputs go, threads, and a per-step callback.
+/// How to run: where outputs go, threads, a per-step callback and a caller's stop.
 struct RunOptions {
   std::filesystem::path out_root;  // empty: the scene's output.dir
   std::filesystem::path out_dir;   // the run folder itself; empty: <out_root>/<scene name>
@@ -49,6 +49,10 @@ struct RunOptions {
   bool write_outputs = true;
   bool write_frames = true;  // VTU frames (history, profiles and summary come regardless)
   std::function<void(const StepReport&, const Model&)> on_step;
+  /// Asked after each committed step, before its history row: false ends the run there, ok,
+  /// with that step's frame written (a caller's own end condition; summary.json then says
+  /// "stopped_by_caller": true).
+  std::function<bool(const StepReport&, const Model&)> keep_going;
 };
 
 /// Where a run of `scene` with `options` writes its files.
