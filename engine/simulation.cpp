@@ -273,7 +273,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
         const double friction =
             contact_ ? contact_->friction_work_between(state_.positions_settled, state_.positions)
                      : 0.0;
-        energy_.attempt_snap_back += settled_energy - stored + work - friction;
+        energy_.add_snap_back(settled_energy - stored + work - friction);
       }
       settled_energy = stored - (energy_.attempt_damage - released_before);
       std::swap(state_.positions, state_.positions_settled);
@@ -799,6 +799,7 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
                    {"damage_dissipation", energy_.damage},
                    {"friction_dissipation", friction},
                    {"snap_back", energy_.snap_back},
+                   {"created_by_resolves", energy_.created},
                    {"anchor_work", energy_.anchor},
                    {"unaccounted", e.external_work - e.kinetic - e.strain - e.dissipated -
                                        e.snap_back - energy_.anchor}};
