@@ -479,8 +479,9 @@ void Simulation::commit_step(double dt) {
             state_.du[d];
   }
   energy_.external_work += work;
-  state_.committed_stored_energy = strain_energy(model_, model_.strain, model_.stress) +
-                                   (contact_ ? contact_->spring_energy() : 0.0);
+  if (damage_)  // where the next step's snap-back starts from, when it starts out of balance
+    state_.committed_stored_energy = strain_energy(model_, model_.strain, model_.stress) +
+                                     (contact_ ? contact_->spring_energy() : 0.0);
   state_.start_out_of_balance = state_.end_out_of_balance;
   std::swap(state_.f_ext_old, state_.f_ext);
   std::swap(state_.reaction_old, state_.reaction);
