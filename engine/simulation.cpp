@@ -41,6 +41,13 @@ constexpr int kMaxRelaxationDoublings = 2;
 /// Rotation (rad) an element may turn before the stiffness is reassembled in its new frame.
 constexpr double kFrameTolerance = 1e-3;
 
+/// The constraints' force on the body at a dof: at a prescribed one, what the body's own
+/// forces leave unbalanced there (f_int + f_contact + restraint - f_ext); elsewhere 0.
+double constraint_force(bool prescribed, double f_int, double f_contact, double restraint,
+                        double f_ext) {
+  return prescribed ? f_int + f_contact + restraint - f_ext : 0.0;
+}
+
 /// Run length: `end`, or `steps` x dt, or one step of 1 s in a static scene without [time].
 double end_time_of(const Scene& scene) {
   if (scene.time.end) return *scene.time.end;
@@ -325,10 +332,9 @@ void Simulation::record_first_reaction() {
                           state_.reaction_first);
   }
   for (std::size_t d = 0; d < num_dofs; ++d)
-    state_.reaction_first[d] = bc_.prescribed[d]
-                                   ? state_.damage_force[d] + state_.reaction_first[d] +
-                                         state_.restraint_force[d] - state_.f_ext[d]
-                                   : 0.0;
+    state_.reaction_first[d] =
+        constraint_force(bc_.prescribed[d], state_.damage_force[d], state_.reaction_first[d],
+                         state_.restraint_force[d], state_.f_ext[d]);
 }
 
 DamageChange Simulation::evaluate_damage() {
@@ -471,9 +477,8 @@ void Simulation::commit_step(double dt) {
   const bool first_reaction = damage_ && scene_.analysis != Analysis::dynamic;
   double work = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) {
-    state_.reaction[d] = bc_.prescribed[d] ? state_.f_int[d] + state_.f_contact[d] +
-                                                 state_.restraint_force[d] - state_.f_ext[d]
-                                           : 0.0;
+    state_.reaction[d] = constraint_force(bc_.prescribed[d], state_.f_int[d], state_.f_contact[d],
+                                          state_.restraint_force[d], state_.f_ext[d]);
     const double reaction = first_reaction ? state_.reaction_first[d] : state_.reaction[d];
     work += 0.5 * (state_.f_ext_old[d] + state_.reaction_old[d] + state_.f_ext[d] + reaction) *
             state_.du[d];
@@ -542,9 +547,9 @@ void Simulation::recompute_committed_forces() {
   fragments_.forces(state_.du, state_.restraint_force);
   for (std::size_t d = 0; d < num_dofs; ++d) {
     state_.f_ext_old[d] = state_.load_factor * reference_loads_[d];
-    state_.reaction_old[d] = bc_.prescribed[d] ? state_.f_int[d] + state_.f_contact[d] +
-                                                     state_.restraint_force[d] - state_.f_ext_old[d]
-                                               : 0.0;
+    state_.reaction_old[d] =
+        constraint_force(bc_.prescribed[d], state_.f_int[d], state_.f_contact[d],
+                         state_.restraint_force[d], state_.f_ext_old[d]);
   }
 }
 
