@@ -1,8 +1,11 @@
-#include "engine/mesh/mesh.hpp"
+#include <utility>
+
+#include "engine/mesh/mesh_cache.hpp"
 #include "engine/model/element_strength.hpp"
 #include "engine/rockdd.hpp"
 #include "engine/scene/scene_reader.hpp"
 #include "engine/supported_features.hpp"
+#include "engine/timers.hpp"
 
 namespace rockdd {
 
@@ -12,10 +15,22 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   return scene;
 }
 
+BuiltModel build_scene_model_reported(const Scene& scene) {
+  BuiltModel built;
+  CachedMesh mesh;
+  {
+    ScopedTimer timer(built.setup.meshing);
+    mesh = build_mesh_with_cache(scene.mesh, scene.file, mesh_cache_dir());
+  }
+  built.setup.mesh_cache = mesh.cache;
+  ScopedTimer timer(built.setup.model);
+  built.model = build_model(scene, std::move(mesh.mesh));
+  assign_element_strengths(scene, built.model);
+  return built;
+}
+
 Model build_scene_model(const Scene& scene) {
-  Model model = build_model(scene, build_mesh(scene.mesh, scene.file));
-  assign_element_strengths(scene, model);
-  return model;
+  return build_scene_model_reported(scene).model;
 }
 
 const char* version() {

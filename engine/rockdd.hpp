@@ -12,6 +12,7 @@
 #include "engine/model/model.hpp"
 #include "engine/monte_carlo/monte_carlo.hpp"
 #include "engine/scene/scene.hpp"
+#include "engine/setup_report.hpp"
 #include "engine/simulation.hpp"
 
 namespace rockdd {
@@ -20,8 +21,18 @@ namespace rockdd {
 /// every feature it uses is available. Throws InputError.
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
 
-/// Meshes the scene through Gmsh and builds its model (blocks, materials, named sets).
+/// Meshes the scene through Gmsh, or takes its mesh from the mesh cache (mesh_cache_dir():
+/// $ROCKDD_MESH_CACHE, off with "off"), and builds its model (blocks, materials, named sets).
 Model build_scene_model(const Scene& scene);
+
+/// A model, and what making it took.
+struct BuiltModel {
+  Model model;
+  SetupReport setup;  // meshing, model and the mesh cache's outcome (scene and startup: unset)
+};
+
+/// build_scene_model, timed: pass `setup` on in RunOptions for a summary that accounts for it.
+BuiltModel build_scene_model_reported(const Scene& scene);
 
 /// The rockdd version string.
 const char* version();

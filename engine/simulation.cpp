@@ -18,7 +18,9 @@
 #include "engine/damage/fragment_restraint.hpp"
 #include "engine/errors.hpp"
 #include "engine/loading/external_loads.hpp"
+#include "engine/mesh/mesh_cache.hpp"
 #include "engine/output/probes.hpp"
+#include "engine/process_clock.hpp"
 #include "engine/time/rotation_correction.hpp"
 #include "kernels/damage_law.hpp"
 
@@ -75,6 +77,7 @@ std::filesystem::path run_folder(const Scene& scene, const RunOptions& options) 
 
 Simulation::Simulation(Scene scene, Model model)
     : scene_(std::move(scene)), model_(std::move(model)) {
+  ScopedTimer timer(setup_timers_.other);
   // Blocks that move turn: their strain is measured in co-rotated frames. A static analysis
   // restrains every block and solves once, small strain (f_int = K u exactly).
   corotational_ = scene_.analysis != Analysis::static_;
@@ -83,13 +86,19 @@ Simulation::Simulation(Scene scene, Model model)
   reference_loads_ = build_reference_loads(scene_, model_);
   probes_ = std::make_unique<Probes>(scene_, model_);
 
-  coloring_ = color_elements(model_.conn, model_.num_nodes());
+  {
+    ScopedTimer layout_timer(timers_.layout);
+    coloring_ = color_elements(model_.conn, model_.num_nodes());
+  }
   if (!scene_.joints.empty()) contact_ = std::make_unique<ContactStage>(scene_, model_);
   if (!model_.tensile_strength.empty()) {
     damage_ = std::make_unique<DamageStage>(scene_, model_);
     committed_damage_ = model_.damage;
   }
   rebuild_layout();
+  // The step loop's timers start at zero: what the first layout took is set-up.
+  std::swap(setup_timers_.layout, timers_.layout);
+  std::swap(setup_timers_.analysis, timers_.analysis);
 
   state_.resize(model_.X.size(), bc_.num_equations);
   for (const InitialSpec& init : scene_.initial) {
@@ -122,6 +131,7 @@ Simulation::Simulation(Scene scene, Model model)
 Simulation::~Simulation() = default;
 
 void Simulation::rebuild_layout() {
+  ScopedTimer timer(timers_.layout);
   std::vector<std::int32_t> conn = model_.conn;
   if (contact_) {
     const std::vector<std::int32_t> triples = contact_->triples();
@@ -130,7 +140,10 @@ void Simulation::rebuild_layout() {
   layout_ = build_stiffness_layout(conn, model_.num_nodes(), bc_.equation);
   values_.assign(static_cast<std::size_t>(layout_.pattern.nnz()), 0.0);
   if (contact_) base_values_.assign(values_.size(), 0.0);
-  if (bc_.num_equations > 0) solver_.analyze(layout_.pattern);
+  if (bc_.num_equations > 0) {
+    ScopedTimer analysis_timer(timers_.analysis);
+    solver_.analyze(layout_.pattern);
+  }
   factorized_mass_coefficient_ = -1.0;  // the values must be assembled into the new pattern
 }
 
@@ -748,7 +761,7 @@ RunResult Simulation::run(const RunOptions& options) {
   }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  result.summary = summary(result, wall, threads);
+  result.summary = summary(result, wall, threads, options.setup);
   result.summary["dt_changes"] = control.changes();
   if (watch_softening) result.summary["softening"] = softening_.summary(scene_.time);
   if (stopped_by_caller) result.summary["stopped_by_caller"] = true;
@@ -759,8 +772,40 @@ RunResult Simulation::run(const RunOptions& options) {
   return result;
 }
 
-nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
-                                   int threads) const {
+nlohmann::json Simulation::timers_summary(double wall_seconds,
+                                          const std::optional<SetupReport>& setup) const {
+  nlohmann::json t = {{"assembly", timers_.assembly},
+                      {"factorization", timers_.factorization},
+                      {"solve", timers_.solve},
+                      {"contact", timers_.contact},
+                      {"damage", timers_.damage},
+                      {"output", timers_.output},
+                      {"layout", timers_.layout},
+                      {"analysis", timers_.analysis},
+                      {"step_other", std::max(0.0, wall_seconds - timers_.sum())},
+                      {"setup_layout", setup_timers_.layout},
+                      {"setup_analysis", setup_timers_.analysis},
+                      {"setup", setup_timers_.other}};
+  if (!setup) return t;
+  double named = setup->scene + setup->meshing + setup->model + setup_timers_.sum() + wall_seconds;
+  if (setup->startup) {
+    t["startup"] = *setup->startup;
+    named += *setup->startup;
+  }
+  t["scene"] = setup->scene;
+  t["meshing"] = setup->meshing;
+  t["model"] = setup->model;
+  // The process's age when the summary is made; what the named timers miss is the gaps
+  // between them (and /proc's 10 ms resolution of the process's start).
+  if (const std::optional<double> process = process_age_seconds(); process && setup->startup) {
+    t["process"] = *process;
+    t["unaccounted"] = *process - named;
+  }
+  return t;
+}
+
+nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds, int threads,
+                                   const std::optional<SetupReport>& setup) const {
   nlohmann::json s;
   s["scene"] = scene_.name;
   s["status"] = result.ok ? "ok" : "failed";
@@ -824,9 +869,8 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
       defaults["time.max_step_displacement"] = contact_->parameters().reach;
   }
   s["defaults"] = defaults;
-  s["timers"] = {{"assembly", timers_.assembly}, {"factorization", timers_.factorization},
-                 {"solve", timers_.solve},       {"contact", timers_.contact},
-                 {"damage", timers_.damage},     {"output", timers_.output}};
+  s["timers"] = timers_summary(wall_seconds, setup);
+  if (setup) s["mesh_cache"] = mesh_cache_outcome_name(setup->mesh_cache);
   const SolverStats& st = solver_.stats();
   s["solver"] = {{"analyses", st.analyses},
                  {"factorizations", st.factorizations},

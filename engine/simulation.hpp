@@ -21,6 +21,7 @@
 #include "engine/output/run_outputs.hpp"
 #include "engine/run_stats.hpp"
 #include "engine/scene/scene.hpp"
+#include "engine/setup_report.hpp"
 #include "engine/solver/cholmod_solver.hpp"
 #include "engine/step_state.hpp"
 #include "engine/time/integrator.hpp"
@@ -53,6 +54,9 @@ struct RunOptions {
   /// with that step's frame written (a caller's own end condition; summary.json then says
   /// "stopped_by_caller": true).
   std::function<bool(const StepReport&, const Model&)> keep_going;
+  /// What came before the Simulation (scene, meshing, model), as its caller measured it; with
+  /// it, summary.json's timers account for the whole process.
+  std::optional<SetupReport> setup;
 };
 
 /// Where a run of `scene` with `options` writes its files.
@@ -121,7 +125,10 @@ class Simulation {
   double element_force_scale() const;
   EnergyBalance energy() const;
   void evaluate_probes(std::vector<double>& row);
-  nlohmann::json summary(const RunResult& result, double wall_seconds, int threads) const;
+  nlohmann::json summary(const RunResult& result, double wall_seconds, int threads,
+                         const std::optional<SetupReport>& setup) const;
+  /// summary.json's "timers": the step stages, the set-up, and with `setup` the whole process.
+  nlohmann::json timers_summary(double wall_seconds, const std::optional<SetupReport>& setup) const;
 
   Scene scene_;
   Model model_;
@@ -172,6 +179,7 @@ class Simulation {
   StepState state_;  // the step's arrays
   RunStats stats_;   // what the run did, for summary.json
   StageTimers timers_;
+  SetupTimers setup_timers_;
 };
 
 }  // namespace rockdd

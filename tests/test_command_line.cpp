@@ -92,6 +92,57 @@ TEST(CommandLine, ResultsDoNotDependOnTheThreadCount) {
         << file;
 }
 
+TEST(CommandLine, ASecondRunTakesItsMeshFromTheCacheAndGivesTheSameResults) {
+  test::TempDir tmp;
+  const std::string scene = (kSource / "data/brazilian_disk_elastic.toml").string();
+  const std::string cache = " --mesh-cache '" + (tmp.path() / "cache").string() + "'";
+  for (const char* out : {"first", "second"})
+    ASSERT_EQ(rockdd_cli("run '" + scene + "' --quiet --out " + out + cache, tmp.path()).exit_code,
+              0);
+  ASSERT_EQ(
+      rockdd_cli("run '" + scene + "' --quiet --out off --mesh-cache off", tmp.path()).exit_code,
+      0);
+  const auto summary = [&](const char* out) {
+    return nlohmann::json::parse(
+        test::read_text(tmp.path() / out / "brazilian-disk-elastic/summary.json"));
+  };
+  EXPECT_EQ(summary("first")["mesh_cache"], "miss");
+  EXPECT_EQ(summary("second")["mesh_cache"], "hit");
+  EXPECT_EQ(summary("off")["mesh_cache"], "off");
+  for (const char* file : {"history.csv", "frames/frame_00001.vtu"}) {
+    const std::string first = test::read_text(tmp.path() / "first/brazilian-disk-elastic" / file);
+    EXPECT_EQ(test::read_text(tmp.path() / "second/brazilian-disk-elastic" / file), first) << file;
+    EXPECT_EQ(test::read_text(tmp.path() / "off/brazilian-disk-elastic" / file), first) << file;
+  }
+}
+
+TEST(CommandLine, SummaryTimersAccountForTheWholeProcess) {
+  test::TempDir tmp;
+  const std::string scene = (kSource / "data/brazilian_disk_elastic.toml").string();
+  ASSERT_EQ(rockdd_cli("run '" + scene + "' --quiet --out out", tmp.path()).exit_code, 0);
+  const auto s = nlohmann::json::parse(
+      test::read_text(tmp.path() / "out/brazilian-disk-elastic/summary.json"));
+  const auto& t = s["timers"];
+  double named = s["wall_seconds"].get<double>();
+  for (const char* key :
+       {"startup", "scene", "meshing", "model", "setup", "setup_layout", "setup_analysis"}) {
+    ASSERT_TRUE(t.contains(key)) << key;
+    EXPECT_GE(t[key].get<double>(), 0.0) << key;
+    named += t[key].get<double>();
+  }
+  double stages = t["step_other"].get<double>();
+  for (const char* key :
+       {"assembly", "factorization", "solve", "contact", "damage", "output", "layout", "analysis"})
+    stages += t[key].get<double>();
+  // The step stages are exclusive (a nested timer pauses its outer one): they add up to the
+  // run's wall time exactly, step_other being the rest.
+  EXPECT_NEAR(stages, s["wall_seconds"].get<double>(), 1e-9);
+  EXPECT_GT(t["setup_analysis"].get<double>(), 0.0);  // CHOLMOD's symbolic phase, apart
+  // The process's age comes from /proc in 10 ms ticks; the gaps between timers are small.
+  const double process = t["process"].get<double>();
+  EXPECT_NEAR(t["unaccounted"].get<double>(), process - named, 1e-9);
+  EXPECT_LT(std::abs(t["unaccounted"].get<double>()), 0.02 + 0.05 * process) << s.dump(1);
+}
 TEST(CommandLine, CheckPrintsCountsAndDefaultsWithoutSolving) {
   test::TempDir tmp;
   const auto inv =

@@ -4,12 +4,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "engine/process_clock.hpp"
 #include "engine/rockdd.hpp"
 #include "tools/monte_carlo_command.hpp"
 
@@ -18,12 +21,15 @@ namespace {
 constexpr const char* kUsage =
     "usage:\n"
     "  rockdd run SCENE [--out DIR] [--threads N] [--set key.path=value ...] [--quiet]\n"
+    "                   [--mesh-cache DIR|off]\n"
     "  rockdd check SCENE [--set key.path=value ...]\n"
     "  rockdd mc SCENE --realizations N [--first-seed S] [--threads N] [--jobs J]\n"
     "                  [--out DIR] [--shard I/N] [--restart] [--frames]\n"
     "                  [--set key.path=value ...] [--quiet]\n"
     "  rockdd mc-merge OUTDIR DIR1 DIR2 ...   # join the shards' mc.csv into OUTDIR\n"
     "  rockdd --version | --help\n"
+    "--mesh-cache DIR|off (run, check, mc): where meshes are kept between runs (default\n"
+    "  $ROCKDD_MESH_CACHE, else $XDG_CACHE_HOME/rockdd/meshes or ~/.cache/rockdd/meshes)\n"
     "exit status: 0 success, 1 the run failed numerically, 2 bad input\n";
 
 /// Parsed command line.
@@ -38,7 +44,8 @@ struct Command {
   int jobs = 0;  // mc: realizations run at once (0: one per thread)
   std::optional<rockdd::Shard> shard;
   bool restart = false, frames = false;
-  std::vector<std::string> folders;  // mc-merge: OUTDIR then the shard folders
+  std::vector<std::string> folders;       // mc-merge: OUTDIR then the shard folders
+  std::optional<std::string> mesh_cache;  // --mesh-cache: a folder, or "off"
 };
 
 /// Bad command line: usage error, exit 2.
@@ -102,6 +109,8 @@ Command parse_command_line(int argc, char** argv) {
       cmd.restart = true;
     else if (arg == "--frames")
       cmd.frames = true;
+    else if (arg == "--mesh-cache")
+      cmd.mesh_cache = value();
     else if (!arg.empty() && arg[0] == '-')
       throw UsageError{"unknown option '" + arg + "'"};
     else if (cmd.verb == "mc-merge")
@@ -114,7 +123,7 @@ Command parse_command_line(int argc, char** argv) {
   if (cmd.verb == "mc-merge") {
     if (cmd.folders.size() < 2) throw UsageError{"mc-merge needs OUTDIR and at least one DIR"};
     if (cmd.realizations > 0 || cmd.first_seed || cmd.jobs > 0 || cmd.shard || cmd.restart ||
-        cmd.frames || cmd.out || cmd.threads > 0 || !cmd.overrides.empty())
+        cmd.frames || cmd.mesh_cache || cmd.out || cmd.threads > 0 || !cmd.overrides.empty())
       throw UsageError{"mc-merge takes only OUTDIR, the shard folders and --quiet"};
     return cmd;
   }
@@ -163,11 +172,20 @@ class Progress {
   std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
 
-int run(const Command& cmd) {
-  rockdd::Scene scene = rockdd::load_scene(cmd.scene, cmd.overrides);
-  rockdd::Simulation sim(scene, rockdd::build_scene_model(scene));
+int run(const Command& cmd, std::optional<double> startup) {
+  double scene_seconds = 0;
+  rockdd::Scene scene;
+  {
+    rockdd::ScopedTimer timer(scene_seconds);
+    scene = rockdd::load_scene(cmd.scene, cmd.overrides);
+  }
+  rockdd::BuiltModel built = rockdd::build_scene_model_reported(scene);
+  built.setup.startup = startup;
+  built.setup.scene = scene_seconds;
+  rockdd::Simulation sim(scene, std::move(built.model));
   Progress progress(cmd.quiet);
   rockdd::RunOptions options;
+  options.setup = built.setup;
   if (cmd.out) options.out_root = *cmd.out;
   options.threads = cmd.threads;
   options.on_step = [&](const rockdd::StepReport& r, const rockdd::Model&) { progress(r); };
@@ -226,6 +244,8 @@ int check(const Command& cmd) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Before any engine work: what loading the libraries and static initialisation took.
+  const std::optional<double> startup = rockdd::process_age_seconds();
   if (argc >= 2 && (std::strcmp(argv[1], "--help") == 0 || std::strcmp(argv[1], "-h") == 0)) {
     std::cout << kUsage;
     return 0;
@@ -236,7 +256,9 @@ int main(int argc, char** argv) {
   }
   try {
     const Command cmd = parse_command_line(argc, argv);
-    if (cmd.verb == "run") return run(cmd);
+    // The engine reads the cache folder from the environment; mc's workers inherit it.
+    if (cmd.mesh_cache) ::setenv("ROCKDD_MESH_CACHE", cmd.mesh_cache->c_str(), 1);
+    if (cmd.verb == "run") return run(cmd, startup);
     if (cmd.verb == "check") return check(cmd);
     if (cmd.verb == "mc-merge")
       return rockdd::cli::monte_carlo_merge(

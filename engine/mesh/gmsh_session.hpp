@@ -6,8 +6,8 @@
 
 namespace rockdd {
 
-/// Holds Gmsh for one mesh: initializes it once per process, quiets it, restores the options
-/// a previous .geo file may have changed, and clears the model when it goes out of scope.
+/// Holds Gmsh for one mesh: initializes it, quiet, and finalizes it when it goes out of scope,
+/// so that no option or model state of one mesh reaches the next.
 /// Gmsh sets the process's OpenMP thread count (to 1) whenever it sets General.NumThreads,
 /// at initialization too; the count the process had is restored on the way out.
 class GmshSession {
@@ -18,7 +18,7 @@ class GmshSession {
   GmshSession& operator=(const GmshSession&) = delete;
 
  private:
-  std::unique_lock<std::mutex> lock_;  // first member: released after the model is cleared
+  std::unique_lock<std::mutex> lock_;  // first member: released after Gmsh is finalized
   int openmp_threads_ = 1;             // omp_get_max_threads() before Gmsh ran
 };
 

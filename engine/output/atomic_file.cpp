@@ -3,6 +3,7 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <atomic>
 #include <cerrno>
 #include <cstring>
 #include <stdexcept>
@@ -12,12 +13,14 @@
 namespace rockdd {
 namespace {
 
-/// `.<name>.tmp.<pid>` beside the target, so the rename stays within one file system.
+/// `.<name>.tmp.<pid>.<n>` beside the target, so the rename stays within one file system;
+/// the count keeps two threads of one process that write the same file apart.
 std::filesystem::path temp_path_for(const std::filesystem::path& path) {
+  static std::atomic<unsigned long> count{0};
   // Built piecewise: `"." + string` trips a false -Wrestrict in GCC 12.
   std::string name(".");
   name += path.filename().string();
-  name += ".tmp." + std::to_string(::getpid());
+  name += ".tmp." + std::to_string(::getpid()) + "." + std::to_string(count++);
   return path.parent_path() / name;
 }
 

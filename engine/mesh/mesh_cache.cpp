@@ -1,0 +1,283 @@
+#include "engine/mesh/mesh_cache.hpp"
+
+#include <gmsh.h>
+
+#include <bit>
+#include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <regex>
+#include <sstream>
+#include <string_view>
+#include <system_error>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+#include "engine/content_hash.hpp"
+#include "engine/mesh/gmsh_session.hpp"
+#include "engine/mesh/mesh_errors.hpp"
+#include "engine/output/atomic_file.hpp"
+#include "engine/scene/mesh_budget.hpp"
+
+#ifndef ROCKDD_MESH_CODE_HASH
+#error "ROCKDD_MESH_CODE_HASH: the build's hash of engine/mesh (engine/mesh/CMakeLists.txt)"
+#endif
+
+namespace rockdd {
+namespace {
+
+// Bumped when the entry layout changes; the code that makes meshes is in the key already.
+constexpr std::string_view kMagic = "rockdd-mesh-cache 1\n";
+
+std::optional<std::string> file_bytes(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  if (in.bad()) return std::nullopt;
+  return bytes;
+}
+
+/// The exact bits of a double, so that two keys agree only for equal values.
+std::string bits(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%a", value);
+  return text;
+}
+
+/// Gmsh's own version (the library's, which may differ from the header's).
+const std::string& gmsh_version() {
+  static const std::string version = [] {
+    GmshSession session;
+    std::string text;
+    gmsh::option::getString("General.Version", text);
+    return text;
+  }();
+  return version;
+}
+
+/// True when a .geo names other files, whose content the key would not see.
+bool reads_other_files(const std::string& geo) {
+  static const std::regex other_file(
+      R"(\b(Include|Merge|MergeWithBoundingBox|ShapeFromFile|Open|Import)\b)");
+  return std::regex_search(geo, other_file);
+}
+
+/// The host's layout; the byte-order mark after the magic keeps another machine's entries out.
+class Writer {
+ public:
+  template <class T>
+  void value(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    bytes_.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void text(std::string_view s) {
+    value<std::uint64_t>(s.size());
+    bytes_.append(s);
+  }
+  template <class T>
+  void array(const std::vector<T>& v) {
+    value<std::uint64_t>(v.size());
+    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
+  }
+  std::string& bytes() { return bytes_; }
+
+ private:
+  std::string bytes_;
+};
+
+class Reader {
+ public:
+  explicit Reader(std::string_view bytes) : rest_(bytes) {}
+  template <class T>
+  bool value(T& v) {
+    if (rest_.size() < sizeof v) return false;
+    std::memcpy(&v, rest_.data(), sizeof v);
+    rest_.remove_prefix(sizeof v);
+    return true;
+  }
+  bool text(std::string& s) {
+    std::uint64_t n = 0;
+    if (!value(n) || n > rest_.size()) return false;
+    s.assign(rest_.substr(0, n));
+    rest_.remove_prefix(n);
+    return true;
+  }
+  template <class T>
+  bool array(std::vector<T>& v) {
+    std::uint64_t n = 0;
+    if (!value(n) || n > rest_.size() / sizeof(T)) return false;
+    v.resize(n);
+    std::memcpy(v.data(), rest_.data(), n * sizeof(T));
+    rest_.remove_prefix(n * sizeof(T));
+    return true;
+  }
+  bool done() const { return rest_.empty(); }
+
+ private:
+  std::string_view rest_;
+};
+
+std::filesystem::path entry_path(const std::filesystem::path& dir, const std::string& key) {
+  Fnv1a h;
+  h.add(key);
+  return dir / (h.hex() + ".mesh");
+}
+
+std::uint64_t checksum(std::string_view payload) {
+  Fnv1a h;
+  h.add(payload);
+  return h.value();
+}
+
+}  // namespace
+
+CachedMesh build_mesh_with_cache(const MeshSpec& spec, const std::filesystem::path& scene_file,
+                                 const std::optional<std::filesystem::path>& cache_dir) {
+  if (!cache_dir) return {build_mesh(spec, scene_file), MeshCacheOutcome::off};
+  const std::optional<std::string> key = mesh_cache_key(spec);
+  if (!key) return {build_mesh(spec, scene_file), MeshCacheOutcome::uncacheable};
+  if (std::optional<Mesh> mesh = read_cached_mesh(*cache_dir, *key)) {
+    // Stored when it fitted; this machine may have less memory free now.
+    const std::string problem =
+        mesh_budget_problem(static_cast<double>(mesh->num_elements()), available_memory_bytes());
+    if (!problem.empty()) MeshSource{scene_file.string(), "mesh"}.fail(problem);
+    return {std::move(*mesh), MeshCacheOutcome::hit};
+  }
+  Mesh mesh = build_mesh(spec, scene_file);
+  write_cached_mesh(*cache_dir, *key, mesh);
+  return {std::move(mesh), MeshCacheOutcome::miss};
+}
+
+const char* mesh_cache_outcome_name(MeshCacheOutcome outcome) {
+  switch (outcome) {
+    case MeshCacheOutcome::off:
+      return "off";
+    case MeshCacheOutcome::hit:
+      return "hit";
+    case MeshCacheOutcome::miss:
+      return "miss";
+    case MeshCacheOutcome::uncacheable:
+      return "uncacheable";
+  }
+  return "off";
+}
+
+std::optional<std::filesystem::path> mesh_cache_dir() {
+  if (const char* dir = std::getenv("ROCKDD_MESH_CACHE")) {
+    const std::string_view value(dir);
+    if (value.empty() || value == "off") return std::nullopt;
+    return std::filesystem::path(value);
+  }
+  if (const char* xdg = std::getenv("XDG_CACHE_HOME"); xdg && *xdg)
+    return std::filesystem::path(xdg) / "rockdd" / "meshes";
+  if (const char* home = std::getenv("HOME"); home && *home)
+    return std::filesystem::path(home) / ".cache" / "rockdd" / "meshes";
+  return std::nullopt;
+}
+
+std::optional<std::string> mesh_cache_key(const MeshSpec& spec) {
+  std::ostringstream key;
+  key << kMagic << "gmsh " << gmsh_version() << "\nmesh code " << ROCKDD_MESH_CODE_HASH << '\n';
+  switch (spec.kind) {
+    case MeshSpec::Kind::rectangle:
+      key << "rectangle size " << bits(spec.size[0]) << ' ' << bits(spec.size[1]) << " origin "
+          << bits(spec.origin[0]) << ' ' << bits(spec.origin[1]);
+      if (!spec.element_size) key << " divisions " << spec.divisions[0] << ' ' << spec.divisions[1];
+      break;
+    case MeshSpec::Kind::disk:
+      key << "disk radius " << bits(spec.radius) << " centre " << bits(spec.origin[0]) << ' '
+          << bits(spec.origin[1]) << " flat half-angle " << bits(spec.flat_half_angle_deg);
+      break;
+    case MeshSpec::Kind::geo:
+    case MeshSpec::Kind::msh: {
+      const std::optional<std::string> bytes = file_bytes(spec.file);
+      if (!bytes) return std::nullopt;
+      if (spec.kind == MeshSpec::Kind::geo && reads_other_files(*bytes)) return std::nullopt;
+      Fnv1a content;
+      content.add(*bytes);
+      // The path stays out of the key: a moved or copied file meshes the same.
+      key << (spec.kind == MeshSpec::Kind::geo ? "geo" : "msh") << " bytes " << bytes->size()
+          << " fnv1a " << content.hex();
+      break;
+    }
+  }
+  if (spec.element_size) key << " element_size " << bits(*spec.element_size);
+  key << '\n';
+  return key.str();
+}
+
+std::optional<Mesh> read_cached_mesh(const std::filesystem::path& dir, const std::string& key) {
+  const std::optional<std::string> bytes = file_bytes(entry_path(dir, key));
+  if (!bytes || bytes->size() < sizeof(std::uint64_t)) return std::nullopt;
+  const std::string_view payload(bytes->data(), bytes->size() - sizeof(std::uint64_t));
+  std::uint64_t stored = 0;
+  std::memcpy(&stored, bytes->data() + payload.size(), sizeof stored);
+  if (stored != checksum(payload)) return std::nullopt;
+
+  Reader in(payload);
+  std::string magic, entry_key;
+  std::uint32_t endian = 0;
+  Mesh mesh;
+  std::uint64_t bodies = 0, curves = 0, points = 0;
+  if (!in.text(magic) || magic != kMagic || !in.value(endian) || endian != 0x01020304u ||
+      !in.text(entry_key) || entry_key != key || !in.array(mesh.xy) || !in.array(mesh.triangles) ||
+      !in.array(mesh.element_surface) || !in.value(bodies))
+    return std::nullopt;
+  mesh.surface_body.resize(bodies);
+  for (std::string& body : mesh.surface_body)
+    if (!in.text(body)) return std::nullopt;
+  if (!in.value(curves)) return std::nullopt;
+  for (std::uint64_t i = 0; i < curves; ++i) {
+    std::string name;
+    std::vector<std::int32_t> flat;
+    if (!in.text(name) || !in.array(flat) || flat.size() % 2 != 0) return std::nullopt;
+    auto& edges = mesh.curves[name];
+    for (std::size_t k = 0; k < flat.size(); k += 2) edges.push_back({flat[k], flat[k + 1]});
+  }
+  if (!in.value(points)) return std::nullopt;
+  for (std::uint64_t i = 0; i < points; ++i) {
+    std::string name;
+    if (!in.text(name) || !in.array(mesh.points[name])) return std::nullopt;
+  }
+  if (!in.done() || mesh.xy.size() % 2 != 0 || mesh.triangles.size() % 3 != 0 ||
+      mesh.element_surface.size() != mesh.num_elements())
+    return std::nullopt;
+  return mesh;
+}
+
+void write_cached_mesh(const std::filesystem::path& dir, const std::string& key, const Mesh& mesh) {
+  Writer out;
+  out.text(kMagic);
+  out.value<std::uint32_t>(0x01020304u);
+  out.text(key);
+  out.array(mesh.xy);
+  out.array(mesh.triangles);
+  out.array(mesh.element_surface);
+  out.value<std::uint64_t>(mesh.surface_body.size());
+  for (const std::string& body : mesh.surface_body) out.text(body);
+  out.value<std::uint64_t>(mesh.curves.size());
+  for (const auto& [name, edges] : mesh.curves) {
+    std::vector<std::int32_t> flat;
+    flat.reserve(2 * edges.size());
+    for (const auto& [a, b] : edges) flat.insert(flat.end(), {a, b});
+    out.text(name);
+    out.array(flat);
+  }
+  out.value<std::uint64_t>(mesh.points.size());
+  for (const auto& [name, nodes] : mesh.points) {
+    out.text(name);
+    out.array(nodes);
+  }
+  out.value(checksum(out.bytes()));
+  try {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    write_file_atomically(entry_path(dir, key), out.bytes());
+  } catch (const std::exception&) {  // a read-only or full disk: the next run meshes again
+  }
+}
+
+}  // namespace rockdd
