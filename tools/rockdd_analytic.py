@@ -117,3 +117,15 @@ def mohr_coulomb_ucs(cohesion, friction_angle):
     friction_angle in radians.
     """
     return 2.0 * cohesion * np.cos(friction_angle) / (1.0 - np.sin(friction_angle))
+
+
+def hondros_centre_stresses(p, alpha):
+    """(sigma_x, sigma_y) at the centre of a disk loaded by a uniform radial pressure p on two
+    opposite arcs of half-angle alpha (rad) about the y axis, tension positive.
+
+    Hondros (1959), exact in plane elasticity:
+      sigma_x = (2 p / pi) (sin 2a - a),   sigma_y = -(2 p / pi) (sin 2a + a);
+    the total load is P = 2 p R sin(a) t, so sigma_x = P/(pi R t) (2 cos a - a / sin a),
+    against the flattened disk's P/(pi R t) (3 cos a - 2 a / sin a) (huang_brazilian_stresses).
+    """
+    return 2.0 * p / np.pi * (np.sin(2.0 * alpha) - alpha), -2.0 * p / np.pi * (np.sin(2.0 * alpha) + alpha)

@@ -1,7 +1,7 @@
 // Thick-walled cylinder (Lame): quarter of a ring with bore a = 0.1 m and outside b = 0.2 m.
 a = 0.1;
 b = 0.2;
-s = 0.01;   // the scene's mesh.element_size caps it
+s = 0.1;    // the scene's mesh.element_size caps it
 
 Point(1) = {0, 0, 0, s};
 Point(2) = {a, 0, 0, s};
