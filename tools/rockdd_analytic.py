@@ -57,3 +57,75 @@ def sliding_block_displacement(time, theta=np.radians(30.0), g=10.0, friction_an
     along = max(g * (np.sin(theta) - np.cos(theta) * np.tan(friction_angle)), 0.0)
     distance = 0.5 * along * time**2
     return distance * np.cos(theta), distance * np.sin(theta)
+
+
+def kirsch_axis_stress(y, a=1.0, S=1.0):
+    """sigma_xx on the axis x = 0 (across the load) of an infinite plate with a circular hole
+    of radius a under remote uniaxial tension S along x, for |y| >= a.
+
+    Kirsch (1898); e.g. Timoshenko & Goodier, Theory of Elasticity, section 35:
+      sigma_theta(r, theta = 90 deg) = S/2 (2 + a^2/r^2 + 3 a^4/r^4),
+    so 3 S at the edge of the hole (stress concentration factor 3) and S far away.
+    """
+    r = np.abs(np.asarray(y, dtype=float))
+    return 0.5 * S * (2.0 + a**2 / r**2 + 3.0 * a**4 / r**4)
+
+
+def lame_cylinder(r, a=0.1, b=0.2, p=100e6, E=200e9, nu=0.3):
+    """(u_r, sigma_r, sigma_theta) at radius r of a thick-walled cylinder (bore a, outside b)
+    under internal pressure p, plane stress, tension positive.
+
+    Lame (1852); e.g. Timoshenko & Goodier, section 28:
+      sigma_r = A - B/r^2,  sigma_theta = A + B/r^2,
+      A = p a^2 / (b^2 - a^2),  B = p a^2 b^2 / (b^2 - a^2),
+      u_r = ((1 - nu) A r + (1 + nu) B / r) / E   (plane stress),
+    so at the bore u_r(a) = p a ((1 - nu) a^2 + (1 + nu) b^2) / (E (b^2 - a^2)).
+    """
+    r = np.asarray(r, dtype=float)
+    A = p * a**2 / (b**2 - a**2)
+    B = p * a**2 * b**2 / (b**2 - a**2)
+    return ((1.0 - nu) * A * r + (1.0 + nu) * B / r) / E, A - B / r**2, A + B / r**2
+
+
+def column_own_weight(y, L=1.0, rho=2600.0, g=10.0, E=1e9):
+    """(u_y, sigma_yy) at height y of a column of height L standing on rollers at y = 0 under
+    its own weight (gravity -g along y), uniaxial (exact in 2-D for nu = 0):
+      sigma_yy = -rho g (L - y),   u_y = -rho g (2 L y - y^2) / (2 E).
+    """
+    y = np.asarray(y, dtype=float)
+    return -rho * g * (2.0 * L * y - y**2) / (2.0 * E), -rho * g * (L - y)
+
+
+def free_fall(time, g=10.0):
+    """(u_y, v_y) of a body released from rest under gravity -g: -1/2 g t^2 and -g t."""
+    time = np.asarray(time, dtype=float)
+    return -0.5 * g * time**2, -g * time
+
+
+def rigid_rotation_displacement(point, centre, angle):
+    """Displacement (R(angle) - I)(point - centre) of a point of a body turned rigidly by
+    `angle` (counter-clockwise, rad) about `centre`; for a spin at omega, angle = omega t."""
+    rx, ry = point[0] - centre[0], point[1] - centre[1]
+    c, s = np.cos(angle), np.sin(angle)
+    return c * rx - s * ry - rx, s * rx + c * ry - ry
+
+
+def mohr_coulomb_ucs(cohesion, friction_angle):
+    """Uniaxial compressive strength of the Mohr-Coulomb criterion (METHOD.md, shear damage):
+      fc0 = 2 c cos(phi) / (1 - sin(phi)),
+    the axial stress at which c1 - c3 (1 + sin phi)/(1 - sin phi) reaches fc0 with c3 = 0.
+    friction_angle in radians.
+    """
+    return 2.0 * cohesion * np.cos(friction_angle) / (1.0 - np.sin(friction_angle))
+
+
+def hondros_centre_stresses(p, alpha):
+    """(sigma_x, sigma_y) at the centre of a disk loaded by a uniform radial pressure p on two
+    opposite arcs of half-angle alpha (rad) about the y axis, tension positive.
+
+    Hondros (1959), exact in plane elasticity:
+      sigma_x = (2 p / pi) (sin 2a - a),   sigma_y = -(2 p / pi) (sin 2a + a);
+    the total load is P = 2 p R sin(a) t, so sigma_x = P/(pi R t) (2 cos a - a / sin a),
+    against the flattened disk's P/(pi R t) (3 cos a - 2 a / sin a) (huang_brazilian_stresses).
+    """
+    return 2.0 * p / np.pi * (np.sin(2.0 * alpha) - alpha), -2.0 * p / np.pi * (np.sin(2.0 * alpha) + alpha)
