@@ -126,9 +126,17 @@ TEST(CommandLine, EveryMalformedSceneExitsTwoNamingFileAndKeyAndWritesNothing) {
 
 TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"msh", "quad.msh"},         {"msh", "zero_area.msh"},      {"msh", "truncated.msh"},
-      {"geo", "syntax_error.geo"}, {"geo", "unmeshable.geo"},     {"geo", "stray_curve.geo"},
-      {"geo", "second_order.geo"}, {"msh", "does_not_exist.msh"},
+      {"msh", "quad.msh"},
+      {"msh", "zero_area.msh"},
+      {"msh", "truncated.msh"},
+      {"geo", "syntax_error.geo"},
+      {"geo", "unmeshable.geo"},
+      {"geo", "stray_curve.geo"},
+      {"geo", "second_order.geo"},
+      {"msh", "does_not_exist.msh"},
+      {"msh", "geo_script.msh"},
+      {"msh", "misspelled_header.msh"},
+      {"msh", "binary_flag_on_text.msh"},
   };
   for (const auto& [kind, file] : cases) {
     test::TempDir tmp;
