@@ -137,6 +137,7 @@ TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
       {"msh", "geo_script.msh"},
       {"msh", "misspelled_header.msh"},
       {"msh", "binary_flag_on_text.msh"},
+      {"msh", "element_names_undefined_node.msh"},
   };
   for (const auto& [kind, file] : cases) {
     test::TempDir tmp;

@@ -454,12 +454,15 @@ TEST(BadInput, MshFilesFoundByFuzzingAreRefusedBeforeGmshReadsThem) {
   // not $MeshFormat as a .geo script, whatever its extension: geo_script.msh was meshed and
   // accepted (a SystemCall in it would have run a shell command), and a misspelled header sent
   // Gmsh's .geo parser over mesh data. A text file whose header says binary made Gmsh's reader
-  // allocate 2 GB from the bytes it took for counts.
+  // allocate 2 GB from the bytes it took for counts. A $Nodes count one short of the nodes
+  // listed crashed rockdd (SIGSEGV in Gmsh) on the element naming the node left out.
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"geo_script.msh", "expected a Gmsh .msh file whose first line is $MeshFormat, got \"//"},
       {"misspelled_header.msh",
        "expected a Gmsh .msh file whose first line is $MeshFormat, got \"$MhrFoemsat\""},
       {"binary_flag_on_text.msh", "data-size 8, got \"2.2  1 0 0\""},
+      {"element_names_undefined_node.msh",
+       "expected elements whose nodes are among the 2 of $Nodes, got element 1 with node 3"},
   };
   for (const auto& [name, phrase] : cases) {
     const InputError error = build_error(file(MeshSpec::Kind::msh, name));

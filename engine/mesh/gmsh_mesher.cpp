@@ -14,6 +14,7 @@
 #include "engine/mesh/gmsh_model_reader.hpp"
 #include "engine/mesh/gmsh_session.hpp"
 #include "engine/mesh/mesh.hpp"
+#include "engine/mesh/msh2_node_references.hpp"
 #include "engine/mesh/msh_header.hpp"
 #include "engine/mesh/validate_mesh.hpp"
 #include "engine/scene/geometry_limits.hpp"
@@ -127,6 +128,7 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
     case MeshSpec::Kind::msh:
       require_file(spec.file, source);
       check_msh_header(spec.file, source);
+      check_msh2_node_references(spec.file, source);
       open();
       return;
     case MeshSpec::Kind::rectangle:

@@ -1,4 +1,4 @@
-// libFuzzer harness: the fuzz input is a scene file's text (tests/fuzz/README.md).
+// libFuzzer harness: the fuzz input is a scene file's text (docs/stability.md, Fuzzing).
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>

@@ -56,10 +56,11 @@ case $mode in
   build)
     need_toolchain
     jobs=$(nproc 2>/dev/null || echo 2)
+    mkdir -p "$build_dir"
     CC=$clang CXX=$clangxx cmake -S "$source_dir" -B "$build_dir" -DROCKDD_FUZZ=ON \
-      -DCMAKE_BUILD_TYPE=Debug >"$build_dir.configure.log" 2>&1 ||
+      -DCMAKE_BUILD_TYPE=Debug >"$build_dir/configure.log" 2>&1 ||
       {
-        cat "$build_dir.configure.log"
+        cat "$build_dir/configure.log"
         exit 1
       }
     cmake --build "$build_dir" -j"$jobs"
@@ -78,13 +79,20 @@ case $mode in
     seed_corpus "$harness" "$work/corpus"
     options=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=16384
       -artifact_prefix="$findings/" -print_final_stats=1)
-    [ "$harness" = msh ] || options+=(-dict="$source_dir/tests/fuzz/scene.dict")
+    if [ "$harness" = msh ]; then
+      # Gmsh leaks on nearly every malformed file (lsan.supp), so libFuzzer would stop the
+      # world for a leak scan after each input: 18 inputs/s instead of about 1,000. The
+      # engine's mesh code holds memory only in containers.
+      options+=(-detect_leaks=0)
+    else
+      options+=(-dict="$source_dir/tests/fuzz/scene.dict")
+    fi
     export LSAN_OPTIONS="suppressions=$source_dir/tests/fuzz/lsan.supp:print_suppressions=0"
     cd "$work"
     if ! "$program" "${options[@]}" corpus; then
       echo "fuzz: $harness found an input the engine does not refuse cleanly; it is in" \
         "$findings/. Reproduce with: $program <file>. Fix the engine, then add the input as a" \
-        "named regression case (tests/fuzz/README.md)." >&2
+        "named regression case (docs/stability.md, Fuzzing)." >&2
       exit 1
     fi
     ;;
