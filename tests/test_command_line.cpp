@@ -138,6 +138,7 @@ TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
       {"msh", "misspelled_header.msh"},
       {"msh", "binary_flag_on_text.msh"},
       {"msh", "element_names_undefined_node.msh"},
+      {"msh", "node_line_split.msh"},
   };
   for (const auto& [kind, file] : cases) {
     test::TempDir tmp;

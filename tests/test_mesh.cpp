@@ -463,6 +463,7 @@ TEST(BadInput, MshFilesFoundByFuzzingAreRefusedBeforeGmshReadsThem) {
       {"binary_flag_on_text.msh", "data-size 8, got \"2.2  1 0 0\""},
       {"element_names_undefined_node.msh",
        "expected elements whose nodes are among the 2 of $Nodes, got element 1 with node 3"},
+      {"node_line_split.msh", "among the 9 of $Nodes, got element 7 with node 9"},
   };
   for (const auto& [name, phrase] : cases) {
     const InputError error = build_error(file(MeshSpec::Kind::msh, name));
