@@ -177,9 +177,20 @@ TEST(CommandLine, EveryMalformedSceneExitsTwoNamingFileAndKeyAndWritesNothing) {
 
 TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"msh", "quad.msh"},         {"msh", "zero_area.msh"},      {"msh", "truncated.msh"},
-      {"geo", "syntax_error.geo"}, {"geo", "unmeshable.geo"},     {"geo", "stray_curve.geo"},
-      {"geo", "second_order.geo"}, {"msh", "does_not_exist.msh"},
+      {"msh", "quad.msh"},
+      {"msh", "zero_area.msh"},
+      {"msh", "truncated.msh"},
+      {"geo", "syntax_error.geo"},
+      {"geo", "unmeshable.geo"},
+      {"geo", "stray_curve.geo"},
+      {"geo", "second_order.geo"},
+      {"msh", "does_not_exist.msh"},
+      {"msh", "geo_script.msh"},
+      {"msh", "misspelled_header.msh"},
+      {"msh", "binary_flag_on_text.msh"},
+      {"msh", "element_names_undefined_node.msh"},
+      {"msh", "node_line_split.msh"},
+      {"msh", "physical_name_dimension_4.msh"},
   };
   for (const auto& [kind, file] : cases) {
     test::TempDir tmp;

@@ -9,6 +9,7 @@
 #include <set>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "engine/errors.hpp"
@@ -446,6 +447,35 @@ TEST(BadInput, UnreadableMshNamesTheFile) {
   EXPECT_EQ(error.expected().rfind("Gmsh could not read the file: ", 0), 0u) << error.what();
   EXPECT_NE(error.expected().find((kMeshes / "truncated.msh").string()), std::string::npos)
       << error.what();
+}
+
+TEST(BadInput, MshFilesFoundByFuzzingAreRefusedBeforeGmshReadsThem) {
+  // tests/fuzz found these (docs/stability.md, Fuzzing). Gmsh reads a file whose first line is
+  // not $MeshFormat as a .geo script, whatever its extension: geo_script.msh was meshed and
+  // accepted (a SystemCall in it would have run a shell command), and a misspelled header sent
+  // Gmsh's .geo parser over mesh data. A text file whose header says binary made Gmsh's reader
+  // allocate 2 GB from the bytes it took for counts. A $Nodes count one short of the nodes
+  // listed crashed rockdd (SIGSEGV in Gmsh) on the element naming the node left out, and so
+  // did a physical name of dimension 4 (Gmsh indexes its tables by it unchecked).
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"geo_script.msh", "expected a Gmsh .msh file whose first line is $MeshFormat, got \"//"},
+      {"misspelled_header.msh",
+       "expected a Gmsh .msh file whose first line is $MeshFormat, got \"$MhrFoemsat\""},
+      {"binary_flag_on_text.msh", "data-size 8, got \"2.2  1 0 0\""},
+      {"element_names_undefined_node.msh",
+       "expected elements whose nodes are among the 2 of $Nodes, got element 1 with node 3"},
+      {"node_line_split.msh", "among the 9 of $Nodes, got element 7 with node 9"},
+      {"physical_name_dimension_4.msh", "got entry 4 of $PhysicalNames"},
+  };
+  for (const auto& [name, phrase] : cases) {
+    const InputError error = build_error(file(MeshSpec::Kind::msh, name));
+    EXPECT_EQ(error.key(), "mesh.msh") << name;
+    EXPECT_NE(error.expected().find(phrase), std::string::npos) << error.what();
+    EXPECT_NE(error.expected().find((kMeshes / name).string()), std::string::npos) << error.what();
+  }
+  // The check lets both documented formats through.
+  for (const char* name : {"square_22.msh", "square_41.msh"})
+    EXPECT_EQ(build_mesh(file(MeshSpec::Kind::msh, name), kScene).num_elements(), 8u) << name;
 }
 
 TEST(BadInput, MeshingFailureIsAnInputErrorNotAnAbort) {

@@ -108,7 +108,8 @@ void add_disk(const MeshSpec& spec, const MeshSource& source) {
   // Flat ends at y = ±R cos(alpha), from x = -R sin(alpha) to R sin(alpha); alpha = 0 leaves a
   // plain circle whose top and bottom are (0, ±R). Every named point is a curve end or
   // embedded, so it is a mesh node; arcs stay below pi as Gmsh requires.
-  const auto [cx, cy] = spec.origin;
+  // Not a structured binding: clang before 16 cannot capture those in the lambda below.
+  const double cx = spec.origin[0], cy = spec.origin[1];
   const double half_width = r * std::sin(alpha), flat_y = r * std::cos(alpha);
   auto point = [&](double x, double y) { return geo::addPoint(cx + x, cy + y, 0.0, size); };
   const int center = point(0.0, 0.0);

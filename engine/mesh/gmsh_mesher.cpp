@@ -14,6 +14,9 @@
 #include "engine/mesh/gmsh_model_reader.hpp"
 #include "engine/mesh/gmsh_session.hpp"
 #include "engine/mesh/mesh.hpp"
+#include "engine/mesh/msh2_node_references.hpp"
+#include "engine/mesh/msh_header.hpp"
+#include "engine/mesh/msh_physical_names.hpp"
 #include "engine/mesh/validate_mesh.hpp"
 #include "engine/scene/geometry_limits.hpp"
 #include "engine/scene/mesh_budget.hpp"
@@ -124,6 +127,10 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
       generate("the file");
       return;
     case MeshSpec::Kind::msh:
+      require_file(spec.file, source);
+      check_msh_header(spec.file, source);
+      check_msh2_node_references(spec.file, source);
+      check_msh_physical_names(spec.file, source);
       open();
       return;
     case MeshSpec::Kind::rectangle:
