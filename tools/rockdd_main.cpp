@@ -12,6 +12,9 @@
 
 #include "engine/rockdd.hpp"
 #include "tools/monte_carlo_command.hpp"
+#ifdef ROCKDD_HAVE_MPI
+#include "tools/mpi_ensemble.hpp"
+#endif
 
 namespace {
 
@@ -22,6 +25,7 @@ constexpr const char* kUsage =
     "  rockdd mc SCENE --realizations N [--first-seed S] [--threads N] [--jobs J]\n"
     "                  [--out DIR] [--shard I/N] [--restart] [--frames]\n"
     "                  [--set key.path=value ...] [--quiet]\n"
+    "  mpirun -n K rockdd mc ...              # K ranks share the seeds (an MPI build)\n"
     "  rockdd mc-merge OUTDIR DIR1 DIR2 ...   # join the shards' mc.csv into OUTDIR\n"
     "  rockdd --version | --help\n"
     "exit status: 0 success, 1 the run failed numerically, 2 bad input\n";
@@ -201,6 +205,10 @@ int monte_carlo(const Command& cmd) {
   options.restart = cmd.restart;
   options.frames = cmd.frames;
   options.quiet = cmd.quiet;
+#ifdef ROCKDD_HAVE_MPI
+  // Under mpirun the ranks share the seeds; MPI is initialized only then.
+  if (rockdd::cli::launched_by_mpi()) return rockdd::cli::mpi_monte_carlo(options);
+#endif
   return rockdd::cli::monte_carlo(options);
 }
 
