@@ -172,7 +172,9 @@ int worker_rank(const MonteCarloOptions& options, const Scene& scene, const Mont
       }
     }
     if (const auto done = workers.reap(false)) {
-      const std::string text = to_json(*done).dump();
+      // A reason may quote bytes that are not UTF-8 (a path): replaced, not thrown over.
+      const std::string text =
+          to_json(*done).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
       MPI_Send(text.data(), static_cast<int>(text.size()), MPI_CHAR, 0, kFinished, MPI_COMM_WORLD);
       busy = true;
     }
