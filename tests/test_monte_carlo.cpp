@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <iostream>
 #include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
@@ -278,10 +279,29 @@ std::filesystem::file_time_type modified(const std::filesystem::path& file) {
   return std::filesystem::last_write_time(file);
 }
 
-TEST(MonteCarloCommand, RowsDoNotDependOnJobsOrShards) {
-  // Four seeds one at a time, two at a time, and as two shards merged: the same rows.
+#ifdef ROCKDD_MPIEXEC
+/// `mpirun --oversubscribe -n RANKS rockdd ARGS` in `cwd` (as root too), stopped after 300 s.
+test::Invocation mpi_rockdd_cli(int ranks, const std::string& args,
+                                const std::filesystem::path& cwd) {
+  const std::string command = "cd '" + cwd.string() +
+                              "' && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
+                              "timeout -k 5 300 '" ROCKDD_MPIEXEC "' --oversubscribe -n " +
+                              std::to_string(ranks) + " '" + ROCKDD_BINARY + "' " + args + " 2>&1";
+  test::Invocation inv;
+  FILE* pipe = popen(command.c_str(), "r");
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) inv.output += buffer.data();
+  const int status = pclose(pipe);
+  inv.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return inv;
+}
+#endif
+
+TEST(MonteCarloCommand, RowsDoNotDependOnJobsShardsOrMpiRanks) {
+  // Eight seeds one at a time, two at a time, as two shards merged and on two MPI ranks (an
+  // MPI build): the same rows, bitwise in every column but wall time.
   test::TempDir tmp;
-  const std::string mc = "mc " + kScene + " --realizations 4 --first-seed 7 --threads 2" + kCoarse;
+  const std::string mc = "mc " + kScene + " --realizations 8 --first-seed 7 --threads 2" + kCoarse;
   const auto one = rockdd_cli(mc + " --jobs 1 --out one", tmp.path());
   ASSERT_EQ(one.exit_code, 0) << one.output;
   const auto two = rockdd_cli(mc + " --jobs 2 --out two", tmp.path());
@@ -292,18 +312,29 @@ TEST(MonteCarloCommand, RowsDoNotDependOnJobsOrShards) {
     ASSERT_EQ(part.exit_code, 0) << part.output;
   }
   // A shard folder holds only its own seeds.
-  EXPECT_EQ(rows_without_wall_time(tmp.path() / "shard1" / kFolder / "mc.csv").size(), 2u);
+  EXPECT_EQ(rows_without_wall_time(tmp.path() / "shard1" / kFolder / "mc.csv").size(), 4u);
   const auto merge =
       rockdd_cli("mc-merge merged shard1/" + kFolder + " shard2/" + kFolder, tmp.path());
   ASSERT_EQ(merge.exit_code, 0) << merge.output;
 
   const auto rows = rows_without_wall_time(tmp.path() / "one" / kFolder / "mc.csv");
-  ASSERT_EQ(rows.size(), 4u);
+  ASSERT_EQ(rows.size(), 8u);
   for (std::size_t i = 0; i < rows.size(); ++i)
     EXPECT_EQ(rows[i].substr(0, rows[i].find(',')), std::to_string(7 + i)) << rows[i];
   EXPECT_NE(rows[0].find(",ok,"), std::string::npos) << rows[0];
   EXPECT_EQ(rows_without_wall_time(tmp.path() / "two" / kFolder / "mc.csv"), rows);
   EXPECT_EQ(rows_without_wall_time(tmp.path() / "merged" / "mc.csv"), rows);
+#ifdef ROCKDD_MPIEXEC
+  // Rank 0 writes every row, its own and rank 1's, into one mc.csv.
+  const auto mpi = mpi_rockdd_cli(2, mc + " --out mpi", tmp.path());
+  ASSERT_EQ(mpi.exit_code, 0) << mpi.output;
+  EXPECT_NE(mpi.output.find("in each of 2 MPI ranks"), std::string::npos) << mpi.output;
+  EXPECT_EQ(rows_without_wall_time(tmp.path() / "mpi" / kFolder / "mc.csv"), rows);
+  EXPECT_EQ(nlohmann::json::parse(test::read_text(tmp.path() / "mpi" / kFolder / "mc.json"))["ok"],
+            8);
+#else
+  std::cout << "no MPI build: the mpirun case is not run\n";
+#endif
 
   // mc.json: the same statistics whichever way the rows came, with quantiles and a Weibull
   // fit of the peak strength; the keys of earlier versions are still there.
@@ -313,8 +344,8 @@ TEST(MonteCarloCommand, RowsDoNotDependOnJobsOrShards) {
   for (const char* key :
        {"scene", "realizations", "first_seed", "ok", "failed", "crashed", "hash", "statistics"})
     EXPECT_TRUE(report.contains(key)) << key;
-  EXPECT_EQ(report["realizations"], 4);
-  EXPECT_EQ(report["ok"], 4);
+  EXPECT_EQ(report["realizations"], 8);
+  EXPECT_EQ(report["ok"], 8);
   EXPECT_EQ(report["hash"], merged["hash"]);
   const auto& peak = report["statistics"]["peaks.top.fy"];
   for (const char* key : {"count", "mean", "std", "min", "max", "q05", "q50", "q95", "weibull"})
@@ -333,7 +364,7 @@ TEST(MonteCarloCommand, RowsDoNotDependOnJobsOrShards) {
   EXPECT_FALSE(std::filesystem::exists(seed7 / "frames"));
   EXPECT_FALSE(std::filesystem::exists(seed7 / "frames.pvd"));
   // Progress lines as realizations finish.
-  EXPECT_NE(one.output.find("mc: 4/4 done, 0 running, 0 failed, "), std::string::npos)
+  EXPECT_NE(one.output.find("mc: 8/8 done, 0 running, 0 failed, "), std::string::npos)
       << one.output;
   EXPECT_NE(one.output.find("realizations/h, ETA 00:00:00"), std::string::npos) << one.output;
 }
@@ -533,6 +564,64 @@ TEST(MonteCarloCommand, ASecondRunOnTheSameFolderIsRefusedWhileTheFirstRuns) {
   waitpid(first, &status, 0);
   EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << test::read_text(tmp.path() / "log");
 }
+
+#ifdef ROCKDD_MPIEXEC
+TEST(MonteCarloCommand, MpiRanksRefuseBadInputAndAHeldFolderAndAKilledRunResumes) {
+  test::TempDir tmp;
+  const std::string mpirun = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 '" +
+                             std::string(ROCKDD_MPIEXEC) + "' --oversubscribe -n 2 '" +
+                             ROCKDD_BINARY + "' ";
+  // Bad input: exit 2, the reader's message once (rank 0's; the other rank stays quiet).
+  const auto bad = mpi_rockdd_cli(
+      2, "mc " + kScene + " --realizations 2 --set material.0.young=-1 --out bad", tmp.path());
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  const std::size_t at = bad.output.find("material[0].young");
+  ASSERT_NE(at, std::string::npos) << bad.output;
+  EXPECT_EQ(bad.output.find("material[0].young", at + 1), std::string::npos) << bad.output;
+
+  // A folder another rockdd mc holds: rank 0 refuses, every rank ends, exit 2.
+  const std::string held =
+      "mc " + kScene + " --realizations 2 --first-seed 7 --threads 1 --jobs 1 --out held" + kCoarse;
+  const pid_t first = start_rockdd(held, tmp.path(), tmp.path() / "held.log");
+  ASSERT_TRUE(poll_until([&] { return !children_of(first).empty(); }, 60.0));
+  const auto second = mpi_rockdd_cli(2, held, tmp.path());
+  EXPECT_EQ(second.exit_code, 2) << second.output;
+  EXPECT_NE(second.output.find("mc.lock"), std::string::npos) << second.output;
+  int status = 0;
+  waitpid(first, &status, 0);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0);
+
+  // mpirun stopped (SIGTERM, as scancel sends) after the first row: whole rows only, and the
+  // rerun runs only the seeds without one.
+  const std::string mc =
+      "mc " + kScene + " --realizations 6 --first-seed 7 --threads 1 --out mc" + kCoarse;
+  const auto dir = tmp.path() / "mc" / kFolder;
+  const pid_t launcher = fork();
+  if (launcher == 0) {
+    const std::string command = "cd '" + tmp.path().string() + "' && exec env " + mpirun + mc +
+                                " >'" + (tmp.path() / "mpi.log").string() + "' 2>&1";
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  ASSERT_TRUE(poll_until([&] {
+    return std::filesystem::exists(dir / "mc.csv") && lines_of(dir / "mc.csv").size() >= 2;
+  })) << test::read_text(tmp.path() / "mpi.log");
+  kill(launcher, SIGTERM);
+  waitpid(launcher, &status, 0);
+  const std::vector<std::string> kept = lines_of(dir / "mc.csv");
+  ASSERT_GE(kept.size(), 2u);
+  for (const std::string& line : kept) EXPECT_EQ(cells_in(line), cells_in(kept[0])) << line;
+  const long done = static_cast<long>(kept.size()) - 1;
+  const auto rerun = mpi_rockdd_cli(2, mc, tmp.path());
+  ASSERT_EQ(rerun.exit_code, 0) << rerun.output;
+  EXPECT_NE(rerun.output.find(std::to_string(done) + " already in"), std::string::npos)
+      << rerun.output;
+  const auto rows = rows_without_wall_time(dir / "mc.csv");
+  ASSERT_EQ(rows.size(), 6u);
+  for (std::size_t i = 0; i < rows.size(); ++i)
+    EXPECT_EQ(rows[i].substr(0, rows[i].find(',') + 3), std::to_string(7 + i) + ",ok");
+}
+#endif
 
 }  // namespace
 }  // namespace rockdd

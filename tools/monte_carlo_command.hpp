@@ -25,9 +25,22 @@ struct MonteCarloOptions {
   bool quiet = false;
 };
 
-/// Runs the seeds of `options` that mc.csv has no completed row for; returns the exit
-/// status: 0 every seed ok, 1 some failed or crashed, 2 bad input.
-int monte_carlo(const MonteCarloOptions& options);
+class EnsemblePeers;
+
+/// Realizations at once in one process, and threads for each.
+struct JobPlan {
+  long jobs = 1;
+  int threads_per_run = 1;
+};
+
+/// The jobs and threads of `options` for `todo` realizations: --jobs (default one per
+/// thread), --threads (default every hardware thread) shared among them.
+JobPlan plan_jobs(const MonteCarloOptions& options, long todo);
+
+/// Runs the seeds of `options` that mc.csv has no completed row for, beside `peers` when
+/// given (MPI ranks that take seeds too); returns the exit status: 0 every seed ok, 1 some
+/// failed or crashed, 2 bad input.
+int monte_carlo(const MonteCarloOptions& options, EnsemblePeers* peers = nullptr);
 
 /// rockdd mc-merge OUTDIR DIR...; returns the exit status (bad input throws InputError).
 int monte_carlo_merge(const std::filesystem::path& out_dir,

@@ -15,6 +15,9 @@
 #include "engine/process_clock.hpp"
 #include "engine/rockdd.hpp"
 #include "tools/monte_carlo_command.hpp"
+#ifdef ROCKDD_HAVE_MPI
+#include "tools/mpi_ensemble.hpp"
+#endif
 
 namespace {
 
@@ -26,6 +29,7 @@ constexpr const char* kUsage =
     "  rockdd mc SCENE --realizations N [--first-seed S] [--threads N] [--jobs J]\n"
     "                  [--out DIR] [--shard I/N] [--restart] [--frames]\n"
     "                  [--set key.path=value ...] [--quiet]\n"
+    "  mpirun -n K rockdd mc ...              # K ranks share the seeds (an MPI build)\n"
     "  rockdd mc-merge OUTDIR DIR1 DIR2 ...   # join the shards' mc.csv into OUTDIR\n"
     "  rockdd --version | --help\n"
     "--mesh-cache DIR|off (run, check, mc): where meshes are kept between runs (default\n"
@@ -219,6 +223,10 @@ int monte_carlo(const Command& cmd) {
   options.restart = cmd.restart;
   options.frames = cmd.frames;
   options.quiet = cmd.quiet;
+#ifdef ROCKDD_HAVE_MPI
+  // Under mpirun the ranks share the seeds; MPI is initialized only then.
+  if (rockdd::cli::launched_by_mpi()) return rockdd::cli::mpi_monte_carlo(options);
+#endif
   return rockdd::cli::monte_carlo(options);
 }
 

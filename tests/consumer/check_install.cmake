@@ -2,8 +2,11 @@
 # fresh prefix, configure and build tests/consumer against it (find_package), run its C++ and
 # C programs and, with pkg-config, the C program compiled from `pkg-config --cflags --libs`.
 # Each must print the same tip displacement as REFERENCE (the same main.cpp on the in-tree
-# library). docs/library.md quotes the consumer's files: they must still be there verbatim.
-#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DREFERENCE=... -DSCENE=... -P check_install.cmake
+# library). With PYTHON (the module was built) the installed Python module, imported from
+# PYTHON_DIR under the prefix alone, must load the prefix's librockdd.so and print the same
+# from example.py. docs/library.md quotes the consumer's files: they must still be there verbatim.
+#   cmake -DBUILD_DIR=... -DSOURCE_DIR=... -DWORK_DIR=... -DREFERENCE=... -DSCENE=...
+#         [-DPYTHON=/usr/bin/python3 -DPYTHON_DIR=lib/python3/dist-packages] -P check_install.cmake
 foreach(var BUILD_DIR SOURCE_DIR WORK_DIR REFERENCE SCENE)
   if(NOT DEFINED ${var})
     message(FATAL_ERROR "check_install.cmake needs -D${var}=...")
@@ -65,7 +68,37 @@ else()
   message(STATUS "no pkg-config: its check skipped")
 endif()
 
-foreach(file CMakeLists.txt main.cpp main.c)
+set(quoted CMakeLists.txt main.cpp main.c)
+if(PYTHON)
+  set(module_dir ${prefix}/${PYTHON_DIR})
+  file(GLOB module ${module_dir}/rockdd*.so)
+  if(NOT module)
+    message(FATAL_ERROR "the install has no Python module in ${PYTHON_DIR}")
+  endif()
+  # Only the prefix on the paths: the module must find librockdd.so through its RPATH.
+  set(clean_env ${CMAKE_COMMAND} -E env --unset=LD_LIBRARY_PATH PYTHONPATH=${module_dir})
+  run_step(python_import COMMAND ${clean_env} ${PYTHON} -c
+    "import rockdd; print(rockdd.__file__); print([l.split()[-1] for l in open('/proc/self/maps') if 'librockdd.so' in l][0])"
+    OUTPUT_VARIABLE loaded)
+  message(STATUS "the installed module and library: ${loaded}")
+  string(FIND "${loaded}" "${module_dir}/rockdd" at_module)
+  string(FIND "${loaded}" "${prefix}/lib/librockdd.so" at_library)
+  if(NOT at_module EQUAL 0 OR at_library EQUAL -1)
+    message(FATAL_ERROR "python imported '${loaded}', expected the module and library under ${prefix}")
+  endif()
+  run_step(python_example
+    COMMAND ${clean_env} ${PYTHON} ${SOURCE_DIR}/tests/consumer/example.py ${SCENE}
+    OUTPUT_VARIABLE py)
+  message(STATUS "Python example: ${py}")
+  if(NOT py STREQUAL expected)
+    message(FATAL_ERROR "the Python example printed '${py}', the library run '${expected}'")
+  endif()
+  list(APPEND quoted example.py)
+else()
+  message(STATUS "no Python module built: its check skipped")
+endif()
+
+foreach(file ${quoted})
   file(READ ${SOURCE_DIR}/tests/consumer/${file} text)
   file(READ ${SOURCE_DIR}/docs/library.md doc)
   string(STRIP "${text}" text)

@@ -1,0 +1,61 @@
+#pragma once
+// The forked worker processes that run an ensemble's realizations, one process each.
+#include <sys/types.h>
+
+#include <chrono>
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "engine/rockdd.hpp"
+
+namespace rockdd::cli {
+
+/// A realization that ended: its mc.csv row, or the bad input it found (the same for every
+/// seed: no row).
+struct FinishedRealization {
+  std::uint64_t seed = 0;
+  EnsembleRow row;
+  std::optional<std::string> bad_input;
+  double seconds = 0.0;  // wall time of its worker
+};
+
+/// Worker processes of one ensemble: each realization runs in a fork of this process (so that
+/// each has the engine's process-wide settings to itself, and a crash takes only its own row).
+/// The process that owns them runs no engine code: a fork would lose any thread pool it had.
+class RealizationWorkers {
+ public:
+  RealizationWorkers(const Scene& scene, const MonteCarloPlan& plan,
+                     std::vector<std::string> columns, int threads_per_run, bool frames);
+  ~RealizationWorkers();
+  RealizationWorkers(const RealizationWorkers&) = delete;
+  RealizationWorkers& operator=(const RealizationWorkers&) = delete;
+
+  /// Starts realization `seed`; the worker closes `close_in_child` (the parent's lock and
+  /// table, which a worker outliving a killed parent must not hold).
+  void launch(std::uint64_t seed, const std::vector<int>& close_in_child = {});
+  /// A worker that ended, reaped; waits for one when `block`. None when none has ended (or
+  /// none runs).
+  std::optional<FinishedRealization> reap(bool block);
+  long running() const { return static_cast<long>(workers_.size()); }
+
+ private:
+  /// A realization running in a worker process.
+  struct Worker {
+    std::uint64_t seed = 0;
+    int report_fd = -1;  // the read end of the worker's pipe
+    std::chrono::steady_clock::time_point start;
+  };
+  EnsembleRow row_of(std::uint64_t seed, int status, const std::string& report) const;
+
+  const Scene& scene_;
+  const MonteCarloPlan& plan_;
+  const std::vector<std::string> columns_;
+  const int threads_per_run_;
+  const bool frames_;
+  std::map<pid_t, Worker> workers_;
+};
+
+}  // namespace rockdd::cli
