@@ -25,8 +25,12 @@ bool SerialOpenMpRegions::active() {
 // precedence over libgomp's for every library in the process; it forwards to libgomp's
 // unless the calling thread asked for inline regions. Inline, the outlined body runs once on
 // this thread, where omp_get_num_threads() = 1 and omp_get_thread_num() = 0, exactly as in
-// a team of one.
-extern "C" void GOMP_parallel(void (*fn)(void*), void* data, unsigned num_threads, unsigned flags) {
+// a team of one. Exported from librockdd.so too (library/CMakeLists.txt links this file into
+// it directly, since --exclude-libs hides every symbol of the static engine): without it,
+// CHOLMOD in a library or Python caller's process took 5x as long to factorize.
+extern "C" __attribute__((visibility("default"))) void GOMP_parallel(void (*fn)(void*), void* data,
+                                                                     unsigned num_threads,
+                                                                     unsigned flags) {
   if (rockdd::inline_regions) {
     fn(data);
     return;
