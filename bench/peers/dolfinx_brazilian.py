@@ -6,7 +6,7 @@ solves plane-stress P1 elasticity with PETSc KSP preonly + Cholesky (MUMPS) and 
 wall time of each phase.
 
   bench/peers/dolfinx_brazilian.py [--element-size 5e-4] [--scene data/brazilian_disk_elastic.toml]
-                                   [--json FILE] [--view]
+                                   [--json FILE] [--view] [--mumps-ordering N]
 
 Needs Debian's python3-dolfinx and python3-gmsh (apt-get install -y python3-dolfinx python3-gmsh);
 run it on one MPI rank with OMP_NUM_THREADS=1 for a one-thread comparison.
@@ -130,6 +130,9 @@ def main():
     ap.add_argument("--element-size", type=float, default=None,
                     help="mesh size cap in m (default: the scene's mesh.element_size)")
     ap.add_argument("--json", help="also write the timers and results to this JSON file")
+    ap.add_argument("--mumps-ordering", type=int, default=None,
+                    help="MUMPS ICNTL(7), the fill-reducing ordering (0 AMD, 2 AMF, 3 SCOTCH, "
+                    "4 PORD, 5 METIS, 6 QAMD, 7 automatic; default: PETSc's default, automatic)")
     ap.add_argument("--view", action="store_true",
                     help="print PETSc's KSPView after the solve (MUMPS's settings and statistics)")
     args = ap.parse_args()
@@ -238,6 +241,8 @@ def main():
     pc = ksp.getPC()
     pc.setType("cholesky")
     pc.setFactorSolverType("mumps")
+    if args.mumps_ordering is not None:  # read by PETSc when MUMPS is initialized, in KSPSetUp
+        PETSc.Options()["mat_mumps_icntl_7"] = args.mumps_ordering
     PETSc.Log.begin()
     t = clock()
     ksp.setUp()
@@ -273,6 +278,7 @@ def main():
     top_flat_dofs = fem.locate_dofs_topological(V, tdim - 1, facet_tags.find(tags["top_flat"]))
     uy_top_flat = float(np.mean(u_arr[top_flat_dofs, 1]))  # rockdd's probe "top": a plain mean
 
+    factor = pc.getFactorMatrix()
     info = {
         "element_size": p["element_size"],
         "triangles": domain.topology.index_map(tdim).size_local,
@@ -285,10 +291,15 @@ def main():
         "dolfinx": dolfinx.__version__,
         "petsc": ".".join(str(x) for x in PETSc.Sys.getVersion()),
         "factor_solver": pc.getFactorSolverType(),
+        "mumps_ordering_used": factor.getMumpsInfog(7),  # 0 AMD, 2 AMF, 3 SCOTCH, 4 PORD, 5 METIS
+        "mumps_factor_entries": factor.getMumpsInfog(29),
+        "mumps_flops": factor.getMumpsRinfog(3),
     }
     print(f"DOLFINx {info['dolfinx']}, PETSc {info['petsc']}, factor: {info['factor_solver']} "
           f"Cholesky; {info['triangles']} triangles, {info['nodes']} nodes, "
-          f"{info['equations']} equations, element_size {p['element_size']:g} m")
+          f"{info['equations']} equations, element_size {p['element_size']:g} m; MUMPS ordering "
+          f"{info['mumps_ordering_used']} (INFOG(7)), {info['mumps_factor_entries']:,} entries in "
+          f"the factor, {info['mumps_flops']:.3g} flops")
     for key in ("meshing", "import", "setup", "jit", "pattern", "assembly", "analysis",
                 "factorization", "ksp_setup", "solve", "total"):
         print(f"  {key:14s} {timers[key]:9.4f} s")
