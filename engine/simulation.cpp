@@ -877,6 +877,8 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
                  {"updates", st.updates},
                  {"updated_columns", st.updated_columns},
                  {"nonzeros", layout_.pattern.nnz()},
+                 {"ordering", std::string(fill_ordering_name(st.ordering))},
+                 {"factor_nonzeros", st.factor_nonzeros},
                  {"factor_flops", st.last_factor_flops}};
   return s;
 }

@@ -74,12 +74,34 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 constexpr double kBreakEvenPerRootN = 0.5;
 constexpr double kConversionPerFactor = 0.15;
 
+/// CHOLMOD's own test of a poor AMD ordering (cholmod_analyze.c, default strategy): at least
+/// 500 flops per nonzero of L and a fill ratio nnz(L) / nnz(tril(A)) of at least 5. Only then
+/// is nested dissection, far slower to compute, worth trying.
+bool amd_fills_badly(double flops, double factor_nonzeros, double matrix_nonzeros) {
+  return flops >= 500.0 * factor_nonzeros && factor_nonzeros >= 5.0 * matrix_nonzeros;
+}
+
+/// A CHOLMOD header over a pattern's upper triangle, read in place.
+cholmod_sparse upper_header(const SparsityPattern& pattern) {
+  cholmod_sparse a{};
+  a.nrow = a.ncol = static_cast<std::size_t>(pattern.n);
+  a.nzmax = static_cast<std::size_t>(pattern.nnz());
+  a.p = const_cast<std::int32_t*>(pattern.col_ptr.data());  // CHOLMOD only reads it
+  a.i = const_cast<std::int32_t*>(pattern.row_idx.data());
+  a.stype = 1;
+  a.itype = CHOLMOD_INT;
+  a.xtype = CHOLMOD_PATTERN;
+  a.dtype = CHOLMOD_DOUBLE;
+  a.sorted = 1;
+  a.packed = 1;
+  return a;
+}
+
 }  // namespace
 
 struct CholmodSolver::State {
   cholmod_common common{};
-  SparsityPattern pattern;
-  cholmod_sparse matrix{};
+  std::int32_t n = 0;
   cholmod_factor* symbolic = nullptr;  // supernodal symbolic factor from the analysis
   cholmod_factor* factor = nullptr;    // numeric: supernodal LL^T, or simplicial LDL^T
   bool factor_ready = false;           // factor holds a usable factorization
@@ -88,9 +110,17 @@ struct CholmodSolver::State {
   cholmod_dense* e_work = nullptr;
   cholmod_dense rhs{};
   int blas_threads = 1;
-  // Low-rank updates: the inverse of the fill-reducing permutation, and C in CSC with its
-  // rows permuted (cholmod_updown works in the factor's ordering).
-  std::vector<std::int32_t> inverse_perm;
+  // The factor's ordering P, applied here rather than by CHOLMOD: perm[k] is the equation of
+  // the factor's column k, inverse_perm its inverse. Given A's upper triangle, CHOLMOD's
+  // supernodal factorization would build tril(P A P^T) with cholmod_transpose at every
+  // call; the analysis computes its pattern once, with the pattern index of each entry
+  // (lower_source), and factorize() only gathers the values into it.
+  std::vector<std::int32_t> perm, inverse_perm;
+  std::vector<std::int32_t> lower_p, lower_i, lower_source;
+  std::vector<double> lower_x, permuted;
+  cholmod_sparse lower{};
+  // Low-rank updates: C in CSC with its rows permuted (cholmod_updown works in the factor's
+  // ordering).
   std::vector<std::int32_t> c_p, c_i, unordered_p, unordered_i, first_row, column_order;
   std::vector<double> c_x, unordered_x;
   std::vector<std::pair<std::int32_t, double>> entries;
@@ -113,21 +143,64 @@ struct CholmodSolver::State {
     cholmod_finish(&common);
   }
 
-  /// A header over our own arrays: CHOLMOD reads the pattern and values in place.
-  void point_matrix_at(double* values) {
-    matrix.nrow = matrix.ncol = static_cast<std::size_t>(pattern.n);
-    matrix.nzmax = static_cast<std::size_t>(pattern.nnz());
-    matrix.p = pattern.col_ptr.data();
-    matrix.i = pattern.row_idx.data();
-    matrix.nz = nullptr;
-    matrix.x = values;
-    matrix.z = nullptr;
-    matrix.stype = 1;  // upper triangle of a symmetric matrix
-    matrix.itype = CHOLMOD_INT;
-    matrix.xtype = values ? CHOLMOD_REAL : CHOLMOD_PATTERN;
-    matrix.dtype = CHOLMOD_DOUBLE;
-    matrix.sorted = 1;
-    matrix.packed = 1;
+  /// The supernodal symbolic factor of the pattern for a given ordering, or by CHOLMOD's own
+  /// `method` (CHOLMOD_AMD; -1: its default strategy) when none is given; nullptr when the
+  /// analysis fails.
+  cholmod_factor* analyze_with(const SparsityPattern& pattern, std::int32_t* given, int method) {
+    cholmod_sparse a = upper_header(pattern);
+    common.nmethods = given == nullptr && method < 0 ? 0 : 1;
+    common.method[0].ordering = given != nullptr ? CHOLMOD_GIVEN : method;
+    return cholmod_analyze_p(&a, given, nullptr, 0, &common);
+  }
+
+  /// Builds tril(P A P^T) from A's upper triangle. Bucketing the entries by row, then
+  /// reading the buckets in row order into their columns, leaves each column sorted.
+  void build_permuted_lower(const SparsityPattern& pattern) {
+    const std::int64_t nnz = pattern.nnz();
+    std::vector<std::int32_t> row_start(static_cast<std::size_t>(n) + 1, 0);
+    lower_p.assign(static_cast<std::size_t>(n) + 1, 0);
+    for (std::int32_t c = 0; c < n; ++c)
+      for (std::int32_t q = pattern.col_ptr[c]; q < pattern.col_ptr[c + 1]; ++q) {
+        const std::int32_t a = inverse_perm[pattern.row_idx[q]], b = inverse_perm[c];
+        ++row_start[std::max(a, b) + 1];
+        ++lower_p[std::min(a, b) + 1];
+      }
+    for (std::int32_t k = 0; k < n; ++k) {
+      row_start[k + 1] += row_start[k];
+      lower_p[k + 1] += lower_p[k];
+    }
+    std::vector<std::int32_t> by_row_col(static_cast<std::size_t>(nnz));
+    std::vector<std::int32_t> by_row_source(static_cast<std::size_t>(nnz));
+    std::vector<std::int32_t> next(row_start.begin(), row_start.end() - 1);
+    for (std::int32_t c = 0; c < n; ++c)
+      for (std::int32_t q = pattern.col_ptr[c]; q < pattern.col_ptr[c + 1]; ++q) {
+        const std::int32_t a = inverse_perm[pattern.row_idx[q]], b = inverse_perm[c];
+        const std::int32_t slot = next[std::max(a, b)]++;
+        by_row_col[slot] = std::min(a, b);
+        by_row_source[slot] = q;
+      }
+    lower_i.resize(static_cast<std::size_t>(nnz));
+    lower_source.resize(static_cast<std::size_t>(nnz));
+    lower_x.assign(static_cast<std::size_t>(nnz), 0.0);
+    next.assign(lower_p.begin(), lower_p.end() - 1);
+    for (std::int32_t r = 0; r < n; ++r)
+      for (std::int32_t q = row_start[r]; q < row_start[r + 1]; ++q) {
+        const std::int32_t slot = next[by_row_col[q]]++;
+        lower_i[slot] = r;
+        lower_source[slot] = by_row_source[q];
+      }
+    lower = cholmod_sparse{};
+    lower.nrow = lower.ncol = static_cast<std::size_t>(n);
+    lower.nzmax = static_cast<std::size_t>(nnz);
+    lower.p = lower_p.data();
+    lower.i = lower_i.data();
+    lower.x = lower_x.data();
+    lower.stype = -1;  // lower triangle, in the factor's ordering: CHOLMOD reads it as it is
+    lower.itype = CHOLMOD_INT;
+    lower.xtype = CHOLMOD_REAL;
+    lower.dtype = CHOLMOD_DOUBLE;
+    lower.sorted = 1;
+    lower.packed = 1;
   }
 
   /// Builds P C in c_p/c_i/c_x: each column's rows mapped through the inverse permutation,
@@ -145,9 +218,9 @@ struct CholmodSolver::State {
       for (std::int32_t q = terms.col_ptr[j]; q < terms.col_ptr[j + 1]; ++q) {
         const std::int32_t r = terms.row[q];
         if (r < 0) continue;
-        if (r >= pattern.n)
+        if (r >= n)
           throw std::invalid_argument("LowRankTerms: equation " + std::to_string(r) +
-                                      " out of range (n = " + std::to_string(pattern.n) + ")");
+                                      " out of range (n = " + std::to_string(n) + ")");
         entries.emplace_back(inverse_perm[r], terms.value[q]);
       }
       if (entries.empty()) continue;
@@ -206,7 +279,8 @@ struct CholmodSolver::State {
   }
 };
 
-CholmodSolver::CholmodSolver() : state_(std::make_unique<State>()) {
+CholmodSolver::CholmodSolver(FillOrdering ordering)
+    : state_(std::make_unique<State>()), ordering_(ordering) {
   keep_large_blocks_in_heap();
 }
 CholmodSolver::~CholmodSolver() = default;
@@ -236,20 +310,63 @@ bool CholmodSolver::supernodal() const {
 void CholmodSolver::analyze(const SparsityPattern& pattern) {
   State& s = *state_;
   SerialOpenMpRegions serial;
+  const auto start = std::chrono::steady_clock::now();
   cholmod_free_factor(&s.factor, &s.common);
   cholmod_free_factor(&s.symbolic, &s.common);
   s.factor_ready = false;
-  s.pattern = pattern;
-  s.point_matrix_at(nullptr);
-  s.symbolic = cholmod_analyze(&s.matrix, &s.common);
+  s.n = pattern.n;
+  FillOrdering kept = ordering_;
+  if (ordering_ == FillOrdering::cholmod || ordering_ == FillOrdering::cholmod_amd) {
+    s.symbolic =
+        s.analyze_with(pattern, nullptr, ordering_ == FillOrdering::cholmod ? -1 : CHOLMOD_AMD);
+  } else if (ordering_ == FillOrdering::node) {
+    // CHOLMOD's default strategy with its nested dissection moved to the node graph: AMD
+    // first (CHOLMOD's own, on the dof graph: it merges the dofs of a node itself and costs
+    // less than building the node graph), then METIS of the node graph only when AMD fills
+    // badly, keeping the smaller factor. CHOLMOD's METIS would build and compress the dof
+    // graph first.
+    s.symbolic = s.analyze_with(pattern, nullptr, CHOLMOD_AMD);
+    kept = FillOrdering::cholmod_amd;
+    if (s.symbolic != nullptr &&
+        amd_fills_badly(s.common.fl, s.common.lnz, static_cast<double>(pattern.nnz()))) {
+      const double amd_fl = s.common.fl, amd_lnz = s.common.lnz;
+      std::vector<std::int32_t> given = node_graph_ordering(pattern, FillOrdering::node_metis);
+      cholmod_factor* dissected = s.analyze_with(pattern, given.data(), -1);
+      if (dissected != nullptr && s.common.lnz < amd_lnz) {
+        cholmod_free_factor(&s.symbolic, &s.common);
+        s.symbolic = dissected;
+        kept = FillOrdering::node_metis;
+      } else {
+        cholmod_free_factor(&dissected, &s.common);
+        s.common.fl = amd_fl;
+        s.common.lnz = amd_lnz;
+        s.common.status = CHOLMOD_OK;  // AMD's analysis stands, whatever METIS's did
+      }
+    }
+  } else {
+    std::vector<std::int32_t> given = node_graph_ordering(pattern, ordering_);
+    s.symbolic = s.analyze_with(pattern, given.data(), -1);
+  }
   if (s.symbolic == nullptr || s.common.status < CHOLMOD_OK)
     throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.common.status) +
                              ")");
   // The analysis leaves the factorization's flop count in Common->fl.
   s.blas_threads = s.common.fl > kParallelBlasFlops ? openblas_get_num_threads() : 1;
-  const auto* perm = static_cast<const std::int32_t*>(s.symbolic->Perm);
+  auto* perm = static_cast<std::int32_t*>(s.symbolic->Perm);
+  s.perm.assign(perm, perm + pattern.n);
   s.inverse_perm.resize(static_cast<std::size_t>(pattern.n));
-  for (std::int32_t k = 0; k < pattern.n; ++k) s.inverse_perm[perm[k]] = k;
+  for (std::int32_t k = 0; k < pattern.n; ++k) s.inverse_perm[s.perm[k]] = k;
+  s.build_permuted_lower(pattern);
+  // The factor now describes P A P^T in its own numbering: CHOLMOD is told that its ordering
+  // is the natural one, so that it factorizes the lower triangle as given (no transpose) and
+  // solves without permuting; solve() applies P itself.
+  for (std::int32_t k = 0; k < pattern.n; ++k) perm[k] = k;
+  s.symbolic->ordering = CHOLMOD_NATURAL;
+  s.permuted.resize(static_cast<std::size_t>(pattern.n));
+  stats_.factor_nonzeros = s.common.lnz;
+  stats_.analysis_flops = s.common.fl;
+  stats_.ordering = kept;
+  stats_.last_analysis_seconds = seconds_since(start);
   ++stats_.analyses;
 }
 
@@ -270,15 +387,16 @@ void CholmodSolver::factorize(const double* values) {
     s.factor = cholmod_copy_factor(s.symbolic, &s.common);
     if (s.factor == nullptr) throw RunFailure("CHOLMOD: out of memory copying the analysis");
   }
-  s.point_matrix_at(const_cast<double*>(values));  // CHOLMOD only reads A
   const auto start = std::chrono::steady_clock::now();
-  cholmod_factorize(&s.matrix, s.factor, &s.common);
+  const std::size_t nnz = s.lower_source.size();
+  for (std::size_t k = 0; k < nnz; ++k) s.lower_x[k] = values[s.lower_source[k]];
+  cholmod_factorize(&s.lower, s.factor, &s.common);
   stats_.last_factor_seconds = seconds_since(start);
   stats_.last_factor_flops = s.common.fl;
   ++stats_.factorizations;
   if (s.common.status == CHOLMOD_NOT_POSDEF) {
     throw RunFailure("the system matrix is not positive definite (CHOLMOD stopped at column " +
-                     std::to_string(s.factor->minor) + " of " + std::to_string(s.pattern.n) +
+                     std::to_string(s.factor->minor) + " of " + std::to_string(s.n) +
                      "): a body is unrestrained or an element has lost its stiffness");
   }
   if (s.common.status < CHOLMOD_OK)
@@ -311,7 +429,7 @@ void CholmodSolver::update(const LowRankTerms& terms, bool add) {
     ++stats_.simplicial_conversions;
   }
   cholmod_sparse c{};
-  c.nrow = static_cast<std::size_t>(s.pattern.n);
+  c.nrow = static_cast<std::size_t>(s.n);
   c.ncol = static_cast<std::size_t>(columns);
   c.nzmax = s.c_i.size();
   c.p = s.c_p.data();
@@ -336,7 +454,7 @@ void CholmodSolver::update(const LowRankTerms& terms, bool add) {
     if (column >= 0) {
       s.factor_ready = false;
       throw RunFailure("the system matrix is not positive definite after a downdate (pivot " +
-                       std::to_string(column) + " of " + std::to_string(s.pattern.n) + ")");
+                       std::to_string(column) + " of " + std::to_string(s.n) + ")");
     }
   }
 }
@@ -347,8 +465,8 @@ bool CholmodSolver::update_expected_faster(std::int64_t columns) const {
   if (columns <= 0) return true;
   // In units of one refactorization. A model, not timings: the choice changes the result's
   // round-off, and the results must not depend on how busy the machine was.
-  double cost = static_cast<double>(columns) /
-                (kBreakEvenPerRootN * std::sqrt(static_cast<double>(s.pattern.n)));
+  double cost =
+      static_cast<double>(columns) / (kBreakEvenPerRootN * std::sqrt(static_cast<double>(s.n)));
   if (s.factor->is_super) cost += kConversionPerFactor;
   return cost < 1.0;
 }
@@ -357,12 +475,13 @@ void CholmodSolver::solve(const double* b, double* x) {
   State& s = *state_;
   if (!s.factor_ready) throw std::logic_error("CholmodSolver::solve without a factorization");
   SerialOpenMpRegions serial;
-  const auto n = static_cast<std::size_t>(s.pattern.n);
+  const auto n = static_cast<std::size_t>(s.n);
+  for (std::size_t k = 0; k < n; ++k) s.permuted[k] = b[s.perm[k]];  // b may alias x
   s.rhs.nrow = n;
   s.rhs.ncol = 1;
   s.rhs.nzmax = n;
   s.rhs.d = n;
-  s.rhs.x = const_cast<double*>(b);  // read only
+  s.rhs.x = s.permuted.data();
   s.rhs.z = nullptr;
   s.rhs.xtype = CHOLMOD_REAL;
   s.rhs.dtype = CHOLMOD_DOUBLE;
@@ -372,7 +491,7 @@ void CholmodSolver::solve(const double* b, double* x) {
                  &s.common);
   if (s.x == nullptr || s.common.status < CHOLMOD_OK) throw RunFailure("CHOLMOD solve failed");
   const auto* solution = static_cast<const double*>(s.x->x);
-  std::copy(solution, solution + n, x);
+  for (std::size_t k = 0; k < n; ++k) x[s.perm[k]] = solution[k];
 }
 
 }  // namespace rockdd

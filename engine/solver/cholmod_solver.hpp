@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "engine/assembly/sparsity_pattern.hpp"
+#include "engine/solver/fill_reducing_ordering.hpp"
 
 namespace rockdd {
 
@@ -20,7 +21,11 @@ struct SolverStats {
   std::int64_t simplicial_conversions = 0;  // supernodal factors turned simplicial for updates
   double last_factor_flops = 0.0;           // cholmod_common.fl of the last factorization
   double last_factor_seconds = 0.0;
-  double last_update_seconds = 0.0;  // the last update(), its conversion included
+  double factor_nonzeros = 0.0;        // nnz(L) of the last analysis (cholmod_common.lnz)
+  double analysis_flops = 0.0;         // the flops it predicts per factorization
+  double last_analysis_seconds = 0.0;  // the last analyze(), ordering included
+  FillOrdering ordering = FillOrdering::cholmod;  // the ordering the last analysis kept
+  double last_update_seconds = 0.0;               // the last update(), its conversion included
 };
 
 /// The columns c_1..c_k of a low-rank term C, each a sparse vector in the solver's equation
@@ -41,12 +46,14 @@ struct LowRankTerms {
 /// Owns the CHOLMOD state (common, symbolic factor, numeric factor) of one SPD system.
 class CholmodSolver {
  public:
-  CholmodSolver();
+  explicit CholmodSolver(FillOrdering ordering = FillOrdering::node);
   ~CholmodSolver();
   CholmodSolver(const CholmodSolver&) = delete;
   CholmodSolver& operator=(const CholmodSolver&) = delete;
 
-  /// Symbolic analysis (fill-reducing ordering, supernodes). Copies the pattern.
+  /// Symbolic analysis (fill-reducing ordering, supernodes) with the constructor's ordering.
+  /// A node-graph ordering is given to CHOLMOD, which then tries no other. The analysis keeps
+  /// the lower triangle of the permuted pattern, P A P^T, that factorize() hands to CHOLMOD.
   void analyze(const SparsityPattern& pattern);
   /// Numeric factorization of the analysed pattern with these values (pattern order), always
   /// supernodal LL^T, whatever updates the previous factor went through.
@@ -80,6 +87,7 @@ class CholmodSolver {
   struct State;
   std::unique_ptr<State> state_;
   SolverStats stats_;
+  FillOrdering ordering_;
 };
 
 }  // namespace rockdd

@@ -1,0 +1,38 @@
+#pragma once
+// Fill-reducing orderings of a symmetric pattern computed on its node graph rather than its
+// dof graph. The two dofs of a mesh node have the same neighbours, so the equations split
+// into groups with identical columns; ordering the quotient graph of the groups (half the
+// vertices, a quarter of the edges of the dof graph in 2D) and keeping each group's
+// equations together gives the same fill as ordering the dof graph, for much less work.
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "engine/assembly/sparsity_pattern.hpp"
+
+namespace rockdd {
+
+/// How CholmodSolver::analyze orders the equations.
+enum class FillOrdering {
+  cholmod,      // CHOLMOD's own strategy on the dof graph: AMD, and METIS when AMD fills badly
+  node_metis,   // METIS nested dissection (METIS_NodeND) of the node graph
+  node_amd,     // AMD of the node graph
+  node,         // cholmod_amd, and METIS of the node graph when AMD fills badly (CHOLMOD's test)
+  cholmod_amd,  // CHOLMOD's AMD of the dof graph alone
+};
+
+std::string_view fill_ordering_name(FillOrdering ordering);
+
+/// The equations cut into runs of consecutive equations whose columns of the full symmetric
+/// pattern (diagonal included) are identical: run g is [start[g], start[g + 1]). In a
+/// stiffness layout each run is the free dofs of one node.
+std::vector<std::int32_t> equation_groups(const SparsityPattern& pattern);
+
+/// The elimination order of the equations by AMD or METIS (FillOrdering::node_amd or
+/// node_metis) of the node graph: perm[k] is the equation eliminated k-th, the equations of
+/// each group of equation_groups() consecutive and in increasing order.
+/// Deterministic: METIS runs with its fixed default seed.
+std::vector<std::int32_t> node_graph_ordering(const SparsityPattern& pattern,
+                                              FillOrdering ordering);
+
+}  // namespace rockdd
