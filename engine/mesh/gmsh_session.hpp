@@ -10,9 +10,11 @@ namespace rockdd {
 /// so that no option or model state of one mesh reaches the next.
 /// Gmsh sets the process's OpenMP thread count (to 1) whenever it sets General.NumThreads,
 /// at initialization too; the count the process had is restored on the way out.
+/// `threads` is Gmsh's General.NumThreads: the engine meshes with 1, as docs/meshing.md found
+/// no gain from more (tools/mesh_study measures it).
 class GmshSession {
  public:
-  GmshSession();
+  explicit GmshSession(int threads = 1);
   ~GmshSession();
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;
