@@ -8,9 +8,10 @@
 namespace rockdd {
 
 /// Gmsh's 2D algorithms, valued as Gmsh's Mesh.Algorithm numbers. A scene offers the first
-/// four; bamg and packing are reachable from the library (tools/mesh_study measures them)
-/// but slower on every scene measured. Gmsh 4.8's 8 (Frontal-Delaunay for quads) is absent:
-/// it crashed Gmsh (SIGSEGV) on the Brazilian disk.
+/// four. bamg and packing are reachable from the library only, for tools/mesh_study: BAMG
+/// remeshes the boundary, so a named curve's edges are no longer sides of triangles and
+/// build_mesh refuses the mesh; packing took 20 to 30 times the default's time. Gmsh 4.8's 8
+/// (Frontal-Delaunay for quads) is absent: it crashed Gmsh (SIGSEGV) on the Brazilian disk.
 enum class MeshAlgorithm {
   meshadapt = 1,
   automatic = 2,
