@@ -10,7 +10,8 @@ namespace rockdd {
 /// Gmsh's 2D algorithms, valued as Gmsh's Mesh.Algorithm numbers. A scene offers the first
 /// four. bamg and packing are reachable from the library only, for tools/mesh_study: BAMG
 /// remeshes the boundary, so a named curve's edges are no longer sides of triangles and
-/// build_mesh refuses the mesh; packing took 20 to 30 times the default's time. Gmsh 4.8's 8
+/// build_mesh refuses the mesh, and elsewhere its repeats were not bitwise equal; packing
+/// took about 20 times the default's time. Gmsh 4.8's 8
 /// (Frontal-Delaunay for quads) is absent: it crashed Gmsh (SIGSEGV) on the Brazilian disk.
 enum class MeshAlgorithm {
   meshadapt = 1,
