@@ -340,6 +340,52 @@ TEST(Disk, BadParametersNameTheirKey) {
   EXPECT_EQ(build_error(disk(0.025, {0, 0}, 10.0, 1e-7)).key(), "mesh.element_size");
 }
 
+// --- Gmsh's 2D algorithm and smoothing (mesh.algorithm, mesh.smoothing) ---------------------
+
+TEST(MesherOptions, TheAlgorithmReachesGmsh) {
+  MeshSpec spec = disk(0.025, {0, 0}, 10.0, 1e-3);
+  const Mesh gmsh_default = build_mesh(spec, kScene);
+  spec.algorithm = MeshAlgorithm::frontal_delaunay;  // the scene's default: Gmsh's own
+  const Mesh frontal = build_mesh(spec, kScene);
+  EXPECT_EQ(frontal.xy, gmsh_default.xy);
+  EXPECT_EQ(frontal.triangles, gmsh_default.triangles);
+  // Delaunay inserts more points at the same size cap (docs/meshing.md: about 13 % more).
+  spec.algorithm = MeshAlgorithm::delaunay;
+  const Mesh delaunay = build_mesh(spec, kScene);
+  EXPECT_GT(delaunay.num_elements(), frontal.num_elements() + frontal.num_elements() / 20);
+  EXPECT_NEAR(total_area(delaunay), total_area(frontal), 1e-9 * total_area(frontal));
+}
+
+TEST(MesherOptions, SmoothingReachesGmsh) {
+  MeshSpec spec = disk(0.025, {0, 0}, 10.0, 1e-3);
+  spec.smoothing = 1;  // the scene's default: Gmsh's own
+  const Mesh one = build_mesh(spec, kScene);
+  EXPECT_EQ(one.xy, build_mesh(disk(0.025, {0, 0}, 10.0, 1e-3), kScene).xy);
+  spec.smoothing = 0;
+  const Mesh none = build_mesh(spec, kScene);
+  EXPECT_NE(none.xy, one.xy);  // the interior nodes are not moved
+}
+
+TEST(MesherOptions, AStructuredRectangleIgnoresThem) {
+  // The scene refuses them with divisions; a library caller's are left unused.
+  MeshSpec spec = rectangle({0.04, 0.01}, {0, 0}, {8, 2});
+  const Mesh plain = build_mesh(spec, kScene);
+  spec.algorithm = MeshAlgorithm::meshadapt;
+  spec.smoothing = 5;
+  const Mesh with = build_mesh(spec, kScene);
+  EXPECT_EQ(with.xy, plain.xy);
+  EXPECT_EQ(with.triangles, plain.triangles);
+}
+
+TEST(MesherOptions, BadValuesNameTheirKey) {
+  MeshSpec spec = disk(0.025, {0, 0}, 10.0, 1e-3);
+  spec.smoothing = -1;
+  EXPECT_EQ(build_error(spec).key(), "mesh.smoothing");
+  spec.smoothing.reset();
+  spec.algorithm = static_cast<MeshAlgorithm>(8);  // Gmsh 4.8.4 crashed on it (SIGSEGV)
+  EXPECT_EQ(build_error(spec).key(), "mesh.algorithm");
+}
+
 // --- .geo files -----------------------------------------------------------------------------
 
 TEST(GeoFile, SeparateSurfacesShareNoNode) {

@@ -104,6 +104,20 @@ TEST(MeshCache, EveryInputOfTheMeshChangesTheKey) {
   MeshSpec sized = rectangle({96, 24}), sized_other = rectangle({1, 1});
   sized.element_size = sized_other.element_size = 1e-3;
   EXPECT_EQ(key(sized), key(sized_other));
+  // Gmsh's 2D algorithm and smoothing passes; unset (Gmsh's own) differs from set.
+  MeshSpec algorithm = disk(1e-3);
+  algorithm.algorithm = MeshAlgorithm::frontal_delaunay;
+  EXPECT_NE(key(algorithm), base);
+  MeshSpec delaunay = algorithm;
+  delaunay.algorithm = MeshAlgorithm::delaunay;
+  EXPECT_NE(key(delaunay), key(algorithm));
+  MeshSpec smoothing = disk(1e-3);
+  smoothing.smoothing = 1;
+  EXPECT_NE(key(smoothing), base);
+  MeshSpec smoother = smoothing;
+  smoother.smoothing = 3;
+  EXPECT_NE(key(smoother), key(smoothing));
+  EXPECT_NE(key(smoothing), key(algorithm));
 }
 
 TEST(MeshCache, AFileIsKeyedByItsBytesNotItsPath) {

@@ -242,6 +242,38 @@ ultimate_strain = 3
   EXPECT_DOUBLE_EQ(s.mesh.radius, 0.025);
   EXPECT_EQ(d.at("mesh.flat_half_angle_deg"), "0");
   EXPECT_EQ(d.at("mesh.origin"), "[0, 0]");
+  // An unstructured built-in shape: Gmsh's algorithm and smoothing are the reader's defaults.
+  EXPECT_EQ(d.at("mesh.algorithm"), "frontal-delaunay");
+  EXPECT_EQ(d.at("mesh.smoothing"), "1");
+  EXPECT_EQ(s.mesh.algorithm, MeshAlgorithm::frontal_delaunay);
+  EXPECT_EQ(s.mesh.smoothing, 1);
+}
+
+TEST(SceneReader, MeshAlgorithmAndSmoothingReachTheMeshSpec) {
+  const auto mesh_of = [](const std::string& mesh_table) {
+    const std::string text = "[scene]\nname = \"m\"\nanalysis = \"static\"\n[mesh]\n" + mesh_table +
+                             "\n[[material]]\ndensity = 1\nyoung = 1\npoisson = 0\n";
+    return parse_scene(text, kScenes / "good" / "virtual.toml");
+  };
+  const Scene set = mesh_of(
+      "shape = \"rectangle\"\nsize = [1, 1]\nelement_size = 0.1\nalgorithm = \"delaunay\"\n"
+      "smoothing = 0");
+  EXPECT_EQ(set.mesh.algorithm, MeshAlgorithm::delaunay);
+  EXPECT_EQ(set.mesh.smoothing, 0);
+  EXPECT_EQ(as_map(set).count("mesh.algorithm"), 0u);
+  // A .geo keeps its own Mesh.Algorithm and Mesh.Smoothing unless the scene sets them: the
+  // file chooses, so no default is recorded.
+  const Scene geo = mesh_of("geo = \"sliding_block.geo\"");
+  EXPECT_FALSE(geo.mesh.algorithm.has_value());
+  EXPECT_FALSE(geo.mesh.smoothing.has_value());
+  EXPECT_EQ(as_map(geo).count("mesh.algorithm"), 0u);
+  EXPECT_EQ(as_map(geo).count("mesh.smoothing"), 0u);
+  const Scene geo_set = mesh_of("geo = \"sliding_block.geo\"\nalgorithm = \"meshadapt\"");
+  EXPECT_EQ(geo_set.mesh.algorithm, MeshAlgorithm::meshadapt);
+  // Divisions make a structured mesh: nothing recorded, nothing set.
+  const Scene grid = mesh_of("shape = \"rectangle\"\nsize = [1, 1]\ndivisions = [2, 2]");
+  EXPECT_FALSE(grid.mesh.algorithm.has_value());
+  EXPECT_EQ(as_map(grid).count("mesh.smoothing"), 0u);
 }
 
 TEST(SceneReader, ReadsEveryKindOfEntry) {

@@ -19,6 +19,7 @@
 #include "engine/mesh/msh_physical_names.hpp"
 #include "engine/mesh/validate_mesh.hpp"
 #include "engine/scene/geometry_limits.hpp"
+#include "engine/scene/mesh_algorithm.hpp"
 #include "engine/scene/mesh_budget.hpp"
 
 namespace rockdd {
@@ -106,6 +107,23 @@ void check_geo_model(const MeshSpec& spec, const MeshSource& source) {
     (spec.element_size ? MeshSource{source.where, "mesh.element_size"} : source).fail(problem);
 }
 
+/// Hands Gmsh the scene's 2D algorithm and smoothing passes (nullopt: Gmsh's or the .geo's own).
+/// Library callers may hand over a MeshSpec the scene reader never saw: the same limits apply.
+void set_mesher_options(const MeshSpec& spec, const MeshSource& source) {
+  if (spec.smoothing && !(*spec.smoothing >= 0 && *spec.smoothing <= kMaxMeshSmoothing))
+    MeshSource{source.where, "mesh.smoothing"}.fail("expected an integer in [0, " +
+                                                    std::to_string(kMaxMeshSmoothing) + "], got " +
+                                                    std::to_string(*spec.smoothing));
+  if (spec.algorithm) {
+    if (mesh_algorithm_name(*spec.algorithm) == "unknown")
+      MeshSource{source.where, "mesh.algorithm"}.fail(
+          "expected a Gmsh 2D algorithm rockdd knows, got number " +
+          std::to_string(static_cast<int>(*spec.algorithm)));
+    gmsh::option::setNumber("Mesh.Algorithm", static_cast<int>(*spec.algorithm));
+  }
+  if (spec.smoothing) gmsh::option::setNumber("Mesh.Smoothing", *spec.smoothing);
+}
+
 /// Fills the current Gmsh model with the 2D mesh `spec` describes.
 void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
   auto open = [&] {
@@ -123,6 +141,7 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
       open();
       // Set after reading so that it overrides the file's own Mesh.MeshSizeMax.
       if (spec.element_size) gmsh::option::setNumber("Mesh.MeshSizeMax", *spec.element_size);
+      set_mesher_options(spec, source);
       check_geo_model(spec, source);
       generate("the file");
       return;
@@ -135,10 +154,13 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
       return;
     case MeshSpec::Kind::rectangle:
       gmsh_step(source, "Gmsh could not draw the rectangle", [&] { add_rectangle(spec, source); });
+      // Divisions make a transfinite (structured) mesh, which neither option changes.
+      if (spec.element_size) set_mesher_options(spec, source);
       generate("the rectangle");
       return;
     case MeshSpec::Kind::disk:
       gmsh_step(source, "Gmsh could not draw the disk", [&] { add_disk(spec, source); });
+      set_mesher_options(spec, source);
       generate("the disk");
       return;
   }
@@ -146,11 +168,11 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
 
 }  // namespace
 
-Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file) {
+Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file, int gmsh_threads) {
   const MeshSource source{scene_file.string(), scene_key(spec.kind)};
   TaggedMesh raw;
   {
-    GmshSession session;
+    GmshSession session(gmsh_threads);
     make_gmsh_mesh(spec, source);
     gmsh_step(source, "Gmsh could not give its mesh", [&] { raw = read_gmsh_model(source); });
   }

@@ -70,13 +70,15 @@ std::string first_gmsh_error(const std::function<void()>& step) {
   return log.first_error();
 }
 
-GmshSession::GmshSession() : lock_(gmsh_mutex()), openmp_threads_(omp_get_max_threads()) {
+GmshSession::GmshSession(int threads)
+    : lock_(gmsh_mutex()), openmp_threads_(omp_get_max_threads()) {
   // A fresh Gmsh for every mesh (0.4 ms): options are global in Gmsh, and its model state
   // outlives gmsh::clear(). Kept alive across meshes, the interior nodes of a transfinite
   // rectangle moved by up to 1e-15 of their coordinates between the first mesh of a process
   // and later ones, so a mesh depended on what the process had meshed before.
   gmsh::initialize(0, nullptr, /*readConfigFiles=*/false);
   make_quiet();
+  if (threads > 1) gmsh::option::setNumber("General.NumThreads", threads);
 }
 
 GmshSession::~GmshSession() {

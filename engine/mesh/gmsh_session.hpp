@@ -10,9 +10,12 @@ namespace rockdd {
 /// so that no option or model state of one mesh reaches the next.
 /// Gmsh sets the process's OpenMP thread count (to 1) whenever it sets General.NumThreads,
 /// at initialization too; the count the process had is restored on the way out.
+/// `threads` is Gmsh's General.NumThreads. The engine meshes with 1: with 2, Gmsh 4.8 gave
+/// different meshes from one run to the next (docs/meshing.md, tools/mesh_study), and a run's
+/// results must not depend on its thread count; nor was there a gain to trade for it.
 class GmshSession {
  public:
-  GmshSession();
+  explicit GmshSession(int threads = 1);
   ~GmshSession();
   GmshSession(const GmshSession&) = delete;
   GmshSession& operator=(const GmshSession&) = delete;

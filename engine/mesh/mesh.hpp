@@ -29,7 +29,10 @@ struct Mesh {
 
 /// Meshes (or reads) what `spec` describes through the Gmsh API; validates the result.
 /// `scene_file` names the scene in error messages. Throws InputError on bad input.
-Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file);
+/// `gmsh_threads`: Gmsh's General.NumThreads (GmshSession); the engine passes 1, since Gmsh's
+/// threaded meshing is not deterministic (docs/meshing.md). More only for tools/mesh_study.
+Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file,
+                int gmsh_threads = 1);
 
 /// Checks triangles (zero or inverted area, bad node ids, duplicates, unused nodes, none at
 /// all) and names; throws InputError(source, "", message) naming elements by their index.

@@ -205,6 +205,9 @@ std::optional<std::string> mesh_cache_key(const MeshSpec& spec) {
     }
   }
   if (spec.element_size) key << " element_size " << bits(*spec.element_size);
+  // Unset: Gmsh's defaults or the .geo's own, which the file's bytes already cover.
+  if (spec.algorithm) key << " algorithm " << static_cast<int>(*spec.algorithm);
+  if (spec.smoothing) key << " smoothing " << *spec.smoothing;
   key << '\n';
   return key.str();
 }

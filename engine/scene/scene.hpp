@@ -9,6 +9,8 @@
 #include <utility>
 #include <vector>
 
+#include "engine/scene/mesh_algorithm.hpp"
+
 namespace rockdd {
 
 enum class Analysis { static_, quasi_static, dynamic };
@@ -44,6 +46,11 @@ struct MeshSpec {
   std::array<int, 2> divisions{10, 10};  // rectangle (structured, two triangles a cell)
   double radius = 0.0;                   // disk
   double flat_half_angle_deg = 0.0;      // disk (0 = round)
+  // Gmsh's 2D algorithm and smoothing passes for unstructured meshes (disk, rectangle with
+  // element_size, .geo); nullopt leaves Gmsh's choice (its defaults, or a .geo's own
+  // Mesh.Algorithm / Mesh.Smoothing). The scene reader fills them in for built-in shapes.
+  std::optional<MeshAlgorithm> algorithm;
+  std::optional<int> smoothing;  // in [0, kMaxMeshSmoothing]
 };
 
 /// [[material]]: elastic, damage and heterogeneity parameters of one body (or "*").

@@ -9,6 +9,7 @@
 
 #include "engine/errors.hpp"
 #include "engine/scene/geometry_limits.hpp"
+#include "engine/scene/mesh_algorithm.hpp"
 #include "engine/scene/mesh_budget.hpp"
 
 namespace rockdd {
@@ -139,6 +140,36 @@ void read_disk(TableReader& table, MeshSpec& mesh) {
   }
 }
 
+/// mesh.algorithm and mesh.smoothing, for a mesh Gmsh draws unstructured. A built-in shape
+/// gets the scene's defaults, recorded; a .geo without them keeps its own Mesh.Algorithm and
+/// Mesh.Smoothing (Gmsh's defaults, the same as the scene's, unless it sets them): the file
+/// chooses there, not the reader, so nothing is recorded.
+void read_mesher_options(TableReader& table, MeshSpec& mesh) {
+  const bool builtin = mesh.kind != MeshSpec::Kind::geo;
+  if (const auto name =
+          table.choice("algorithm", {"frontal-delaunay", "delaunay", "meshadapt", "automatic"})) {
+    mesh.algorithm = scene_mesh_algorithm(*name);
+  } else if (builtin) {
+    mesh.algorithm = kDefaultMeshAlgorithm;
+    table.record_default("algorithm", std::string(mesh_algorithm_name(kDefaultMeshAlgorithm)));
+  }
+  if (const auto passes = table.integer("smoothing", 0, kMaxMeshSmoothing)) {
+    mesh.smoothing = static_cast<int>(*passes);
+  } else if (builtin) {
+    mesh.smoothing = kDefaultMeshSmoothing;
+    table.record_default("smoothing", std::to_string(kDefaultMeshSmoothing));
+  }
+}
+
+/// Refuses mesh.algorithm and mesh.smoothing where Gmsh does not triangulate: they would
+/// silently do nothing. `what` says why ("a .msh is already meshed").
+void refuse_mesher_options(const TableReader& table, const std::string& source,
+                           const std::string& why) {
+  for (const std::string& key : table.present({"algorithm", "smoothing"}))
+    table.fail(
+        key, "expected no " + table.key_path(key) + " with " + source + " (" + why + "), got one");
+}
+
 /// The key that sets a built-in shape's element count: what a message about it must name.
 std::string_view count_key(const MeshSpec& mesh) {
   return mesh.element_size ? "element_size" : "divisions";
@@ -266,7 +297,7 @@ MeshSpec read_mesh(TableReader& root, const fs::path& scene_dir) {
               "expected a table [mesh] with geo, msh or shape, got nothing (it is required)");
   }
   table->allow_only({"geo", "msh", "shape", "element_size", "size", "origin", "divisions", "radius",
-                     "flat_half_angle_deg"});
+                     "flat_half_angle_deg", "algorithm", "smoothing"});
   const auto sources = table->present({"geo", "msh", "shape"});
   if (sources.empty())
     table->fail_table("expected one of mesh.geo, mesh.msh, mesh.shape, got none");
@@ -288,6 +319,13 @@ MeshSpec read_mesh(TableReader& root, const fs::path& scene_dir) {
   } else {
     read_disk(*table, mesh);
   }
+  if (mesh.kind == MeshSpec::Kind::msh)
+    refuse_mesher_options(*table, "mesh.msh", "a .msh is already meshed");
+  else if (mesh.kind == MeshSpec::Kind::rectangle && !mesh.element_size)
+    refuse_mesher_options(*table, "mesh.divisions",
+                          "a structured mesh; they apply to a rectangle with element_size");
+  else
+    read_mesher_options(*table, mesh);
   check_mesh_budget(*table, mesh);
   check_precision(*table, mesh);
   return mesh;
