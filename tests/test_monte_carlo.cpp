@@ -287,13 +287,7 @@ test::Invocation mpi_rockdd_cli(int ranks, const std::string& args,
                               "' && OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 "
                               "timeout -k 5 300 '" ROCKDD_MPIEXEC "' --oversubscribe -n " +
                               std::to_string(ranks) + " '" + ROCKDD_BINARY + "' " + args + " 2>&1";
-  test::Invocation inv;
-  FILE* pipe = popen(command.c_str(), "r");
-  std::array<char, 4096> buffer{};
-  while (std::fgets(buffer.data(), buffer.size(), pipe) != nullptr) inv.output += buffer.data();
-  const int status = pclose(pipe);
-  inv.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return inv;
+  return test::run_shell(command);
 }
 #endif
 

@@ -114,14 +114,8 @@ struct Invocation {
   std::string output;
 };
 
-/// Runs `rockdd ARGS` in `cwd`; with `timeout_s` > 0 it is killed after that many seconds
-/// (exit status 124), so that a hang fails the test instead of stalling the suite.
-inline Invocation rockdd_cli(const std::string& args, const std::filesystem::path& cwd,
-                             int timeout_s = 0) {
-  const std::string limit =
-      timeout_s > 0 ? "timeout -k 5 " + std::to_string(timeout_s) + " " : std::string();
-  const std::string command =
-      "cd '" + cwd.string() + "' && " + limit + "'" + ROCKDD_BINARY + "' " + args + " 2>&1";
+/// Runs a shell command line, stdout and stderr together.
+inline Invocation run_shell(const std::string& command) {
   Invocation inv;
   FILE* pipe = popen(command.c_str(), "r");
   std::array<char, 4096> buffer{};
@@ -129,6 +123,16 @@ inline Invocation rockdd_cli(const std::string& args, const std::filesystem::pat
   const int status = pclose(pipe);
   inv.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return inv;
+}
+
+/// Runs `rockdd ARGS` in `cwd`; with `timeout_s` > 0 it is killed after that many seconds
+/// (exit status 124), so that a hang fails the test instead of stalling the suite.
+inline Invocation rockdd_cli(const std::string& args, const std::filesystem::path& cwd,
+                             int timeout_s = 0) {
+  const std::string limit =
+      timeout_s > 0 ? "timeout -k 5 " + std::to_string(timeout_s) + " " : std::string();
+  return run_shell("cd '" + cwd.string() + "' && " + limit + "'" + ROCKDD_BINARY + "' " + args +
+                   " 2>&1");
 }
 
 /// A CSV file as named columns of numbers.

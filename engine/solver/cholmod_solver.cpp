@@ -81,20 +81,32 @@ bool amd_fills_badly(double flops, double factor_nonzeros, double matrix_nonzero
   return flops >= 500.0 * factor_nonzeros && factor_nonzeros >= 5.0 * matrix_nonzeros;
 }
 
-/// A CHOLMOD header over a pattern's upper triangle, read in place.
-cholmod_sparse upper_header(const SparsityPattern& pattern) {
+/// A CHOLMOD header over packed, sorted CSC arrays of ours, read in place (CHOLMOD only reads
+/// them): `x` null for a pattern; stype 1 upper, -1 lower triangle, 0 unsymmetric.
+cholmod_sparse csc_header(std::size_t nrow, std::size_t ncol, std::size_t nnz,
+                          const std::int32_t* p, const std::int32_t* i, const double* x,
+                          int stype) {
   cholmod_sparse a{};
-  a.nrow = a.ncol = static_cast<std::size_t>(pattern.n);
-  a.nzmax = static_cast<std::size_t>(pattern.nnz());
-  a.p = const_cast<std::int32_t*>(pattern.col_ptr.data());  // CHOLMOD only reads it
-  a.i = const_cast<std::int32_t*>(pattern.row_idx.data());
-  a.stype = 1;
+  a.nrow = nrow;
+  a.ncol = ncol;
+  a.nzmax = nnz;
+  a.p = const_cast<std::int32_t*>(p);
+  a.i = const_cast<std::int32_t*>(i);
+  a.x = const_cast<double*>(x);
+  a.stype = stype;
   a.itype = CHOLMOD_INT;
-  a.xtype = CHOLMOD_PATTERN;
+  a.xtype = x != nullptr ? CHOLMOD_REAL : CHOLMOD_PATTERN;
   a.dtype = CHOLMOD_DOUBLE;
   a.sorted = 1;
   a.packed = 1;
   return a;
+}
+
+/// A CHOLMOD header over a pattern's upper triangle.
+cholmod_sparse upper_header(const SparsityPattern& pattern) {
+  const auto n = static_cast<std::size_t>(pattern.n);
+  return csc_header(n, n, static_cast<std::size_t>(pattern.nnz()), pattern.col_ptr.data(),
+                    pattern.row_idx.data(), nullptr, 1);
 }
 
 }  // namespace
@@ -189,18 +201,10 @@ struct CholmodSolver::State {
         lower_i[slot] = r;
         lower_source[slot] = by_row_source[q];
       }
-    lower = cholmod_sparse{};
-    lower.nrow = lower.ncol = static_cast<std::size_t>(n);
-    lower.nzmax = static_cast<std::size_t>(nnz);
-    lower.p = lower_p.data();
-    lower.i = lower_i.data();
-    lower.x = lower_x.data();
-    lower.stype = -1;  // lower triangle, in the factor's ordering: CHOLMOD reads it as it is
-    lower.itype = CHOLMOD_INT;
-    lower.xtype = CHOLMOD_REAL;
-    lower.dtype = CHOLMOD_DOUBLE;
-    lower.sorted = 1;
-    lower.packed = 1;
+    // Lower triangle, in the factor's ordering: CHOLMOD reads it as it is.
+    lower = csc_header(static_cast<std::size_t>(n), static_cast<std::size_t>(n),
+                       static_cast<std::size_t>(nnz), lower_p.data(), lower_i.data(),
+                       lower_x.data(), -1);
   }
 
   /// Builds P C in c_p/c_i/c_x: each column's rows mapped through the inverse permutation,
@@ -428,19 +432,8 @@ void CholmodSolver::update(const LowRankTerms& terms, bool add) {
     }
     ++stats_.simplicial_conversions;
   }
-  cholmod_sparse c{};
-  c.nrow = static_cast<std::size_t>(s.n);
-  c.ncol = static_cast<std::size_t>(columns);
-  c.nzmax = s.c_i.size();
-  c.p = s.c_p.data();
-  c.i = s.c_i.data();
-  c.x = s.c_x.data();
-  c.stype = 0;
-  c.itype = CHOLMOD_INT;
-  c.xtype = CHOLMOD_REAL;
-  c.dtype = CHOLMOD_DOUBLE;
-  c.sorted = 1;
-  c.packed = 1;
+  cholmod_sparse c = csc_header(static_cast<std::size_t>(s.n), static_cast<std::size_t>(columns),
+                                s.c_i.size(), s.c_p.data(), s.c_i.data(), s.c_x.data(), 0);
   const int ok = cholmod_updown(add, &c, s.factor, &s.common);
   ++stats_.updates;
   stats_.updated_columns += columns;
