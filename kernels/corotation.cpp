@@ -20,8 +20,8 @@ double element_rotation(const double xy0[6], const double xy[6]) {
   return std::atan2(f[1][0] - f[0][1], f[0][0] + f[1][1]);
 }
 
-void corotated_displacement(const double xy0[6], const double xy[6], double theta, double u[6]) {
-  const double cs = std::cos(theta), sn = std::sin(theta);
+void corotated_displacement(const double xy0[6], const double xy[6], Rotation r, double u[6]) {
+  const double cs = r.cs, sn = r.sn;
   const double xc = (xy[0] + xy[2] + xy[4]) / 3.0, yc = (xy[1] + xy[3] + xy[5]) / 3.0;
   const double x0c = (xy0[0] + xy0[2] + xy0[4]) / 3.0, y0c = (xy0[1] + xy0[3] + xy0[5]) / 3.0;
   for (int k = 0; k < 3; ++k) {
@@ -31,8 +31,8 @@ void corotated_displacement(const double xy0[6], const double xy[6], double thet
   }
 }
 
-void rotate_nodal(double theta, double v[6]) {
-  const double cs = std::cos(theta), sn = std::sin(theta);
+void rotate_nodal(Rotation r, double v[6]) {
+  const double cs = r.cs, sn = r.sn;
   for (int k = 0; k < 3; ++k) {
     const double x = v[2 * k], y = v[2 * k + 1];
     v[2 * k] = cs * x - sn * y;
@@ -40,12 +40,12 @@ void rotate_nodal(double theta, double v[6]) {
   }
 }
 
-void rotate_element_matrix(double theta, double k[36]) {
-  const double cs = std::cos(theta), sn = std::sin(theta);
+void rotate_element_matrix(Rotation r, double k[36]) {
+  const double cs = r.cs, sn = r.sn;
   // T k T^T with T block diagonal: rotate the columns (k T^T), then the rows (T (k T^T)).
-  for (int r = 0; r < 6; ++r)
+  for (int i = 0; i < 6; ++i)
     for (int n = 0; n < 3; ++n) {
-      double* row = &k[6 * r + 2 * n];
+      double* row = &k[6 * i + 2 * n];
       const double x = row[0], y = row[1];
       row[0] = cs * x - sn * y;
       row[1] = sn * x + cs * y;
@@ -60,8 +60,8 @@ void rotate_element_matrix(double theta, double k[36]) {
     }
 }
 
-void rotate_tensor(double theta, double s[3]) {
-  const double cs = std::cos(theta), sn = std::sin(theta);
+void rotate_tensor(Rotation r, double s[3]) {
+  const double cs = r.cs, sn = r.sn;
   const double xx = s[0], yy = s[1], xy = s[2];
   s[0] = cs * cs * xx - 2.0 * cs * sn * xy + sn * sn * yy;
   s[1] = sn * sn * xx + 2.0 * cs * sn * xy + cs * cs * yy;

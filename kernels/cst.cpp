@@ -78,6 +78,28 @@ void cst_stiffness(const double xy[6], const double d[9], double t, double k[36]
   }
 }
 
+void cst_stiffness_factor(const double xy[6], const double d[9], double t, double w[18]) {
+  double b[3], c[3];
+  const double area = cst_gradients(xy, b, c);
+  // Cholesky of the 3x3 D (lower triangular L, row-major).
+  double l[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  l[0] = std::sqrt(d[0]);
+  l[3] = d[3] / l[0];
+  l[6] = d[6] / l[0];
+  l[4] = std::sqrt(d[4] - l[3] * l[3]);
+  l[7] = (d[7] - l[6] * l[3]) / l[4];
+  l[8] = std::sqrt(d[8] - l[6] * l[6] - l[7] * l[7]);
+  // Row a of W: sqrt(t / (4 |A|)) times row a of Bhat^T (as in cst_stiffness) times L.
+  const double scale = std::sqrt(t / (4.0 * std::fabs(area)));
+  for (int i = 0; i < 3; ++i) {
+    const double rows[2][3] = {{b[i], 0.0, c[i]}, {0.0, c[i], b[i]}};
+    for (int r = 0; r < 2; ++r)
+      for (int j = 0; j < 3; ++j)
+        w[3 * (2 * i + r) + j] = scale * (rows[r][0] * l[j] + rows[r][1] * l[3 + j] +
+                                          rows[r][2] * l[6 + j]);
+  }
+}
+
 void cst_strain(const double xy[6], const double u[6], double eps[3]) {
   double b[3], c[3];
   const double inv2a = 0.5 / cst_gradients(xy, b, c);

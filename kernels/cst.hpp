@@ -30,6 +30,12 @@ void elasticity_matrix(double young, double poisson, PlaneKind plane, double d[9
 /// Element stiffness k = t A B^T D B (6x6 row-major).
 void cst_stiffness(const double xy[6], const double d[9], double t, double k[36]);
 
+/// A factor of the element stiffness, k = W W^T with W 6x3 (row-major, w[3 * a + j]):
+/// W = sqrt(t |A|) B^T L for D = L L^T. k has rank 3 (its null space is the rigid motions),
+/// so a change of the element's modulus changes K by a rank-3 term that a Cholesky factor can
+/// absorb by an update instead of a refactorization. Needs D positive definite (nu < 0.5).
+void cst_stiffness_factor(const double xy[6], const double d[9], double t, double w[18]);
+
 /// Strain of the element for nodal displacements u.
 void cst_strain(const double xy[6], const double u[6], double eps[3]);
 

@@ -31,7 +31,7 @@ TEST(Corotation, RigidMotionLeavesNoDisplacementWhateverTheAngle) {
     double xy[6], u[6];
     deform(f, shift, xy);
     EXPECT_NEAR(element_rotation(kXy0, xy), theta, 1e-14);
-    corotated_displacement(kXy0, xy, element_rotation(kXy0, xy), u);
+    corotated_displacement(kXy0, xy, Rotation(element_rotation(kXy0, xy)), u);
     for (const double ui : u) EXPECT_NEAR(ui, 0.0, 1e-14);
   }
 }
@@ -48,7 +48,7 @@ TEST(Corotation, StretchAfterRotationIsMeasuredInTheElementFrame) {
   deform(f, shift, xy);
   const double angle = element_rotation(kXy0, xy);
   EXPECT_NEAR(angle, theta, 1e-14);
-  corotated_displacement(kXy0, xy, angle, u);
+  corotated_displacement(kXy0, xy, Rotation(angle), u);
   cst_strain(kXy0, u, eps);
   EXPECT_NEAR(eps[0], 0.01, 1e-14);
   EXPECT_NEAR(eps[1], -0.005, 1e-14);
@@ -65,26 +65,26 @@ TEST(Corotation, RotatedStiffnessIsTheStiffnessOfTheRotatedElement) {
   elasticity_matrix(1e10, 0.25, PlaneKind::stress, d);
   cst_stiffness(kXy0, d, 1.0, k0);
   cst_stiffness(xy, d, 1.0, k1);
-  rotate_element_matrix(theta, k0);
+  rotate_element_matrix(Rotation(theta), k0);
   for (int i = 0; i < 36; ++i) EXPECT_NEAR(k0[i], k1[i], 1e-12 * 1e10);
 }
 
 TEST(Corotation, TensorRotationKeepsInvariantsAndTurnsAxes) {
   // A quarter turn swaps xx and yy and flips xy; any turn keeps the trace and determinant.
   double s[3] = {3.0, -1.0, 0.5};
-  rotate_tensor(std::acos(-1.0) / 2, s);
+  rotate_tensor(Rotation(std::acos(-1.0) / 2), s);
   EXPECT_NEAR(s[0], -1.0, 1e-14);
   EXPECT_NEAR(s[1], 3.0, 1e-14);
   EXPECT_NEAR(s[2], -0.5, 1e-14);
   double t[3] = {3.0, -1.0, 0.5};
-  rotate_tensor(0.37, t);
+  rotate_tensor(Rotation(0.37), t);
   EXPECT_NEAR(t[0] + t[1], 2.0, 1e-14);
   EXPECT_NEAR(t[0] * t[1] - t[2] * t[2], -3.25, 1e-13);
 }
 
 TEST(Corotation, NodalRotationTurnsEachNode) {
   double v[6] = {1, 0, 0, 1, 2, 2};
-  rotate_nodal(std::acos(-1.0) / 2, v);
+  rotate_nodal(Rotation(std::acos(-1.0) / 2), v);
   const double expected[6] = {0, 1, -1, 0, -2, 2};
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(v[i], expected[i], 1e-15);
 }

@@ -28,7 +28,7 @@ void assemble_stiffness(const Model& model, const ElementColoring& coloring,
             kernels::cst_stiffness(xy, d, t, k);
             // Co-rotational: the reference stiffness turned into the element's frame.
             if (!model.rotation.empty() && model.rotation[e] != 0.0)
-              kernels::rotate_element_matrix(model.rotation[e], k);
+              kernels::rotate_element_matrix(kernels::Rotation(model.rotation[e]), k);
             const std::int32_t* to =
                 &layout.scatter[static_cast<std::size_t>(e) * kElementUpperEntries];
             for (int a = 0; a < 6; ++a)

@@ -30,7 +30,8 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
             for (int k = 0; k < 6; ++k) x[k] = xy[k] + ue[k];
             // Co-rotational: strain and stress in the element's own frame, forces turned back.
             const double theta = corotational ? kernels::element_rotation(xy, x) : 0.0;
-            if (corotational) kernels::corotated_displacement(xy, x, theta, ue);
+            const kernels::Rotation turn(theta);
+            if (corotational) kernels::corotated_displacement(xy, x, turn, ue);
             kernels::elasticity_matrix(damaged_young(model.young[e], model.damage[e]),
                                        model.poisson[e], plane, d);
             double* eps = &strain[3 * static_cast<std::size_t>(e)];
@@ -39,11 +40,11 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
             kernels::cst_stress(d, eps, sig);
             kernels::cst_internal_force(xy, sig, t, f);
             if (corotational) {
-              kernels::rotate_nodal(theta, f);
+              kernels::rotate_nodal(turn, f);
               // Reported in the global frame: sigma = R sigma' R^T, likewise the strain.
-              kernels::rotate_tensor(theta, sig);
+              kernels::rotate_tensor(turn, sig);
               eps[2] *= 0.5;
-              kernels::rotate_tensor(theta, eps);
+              kernels::rotate_tensor(turn, eps);
               eps[2] *= 2.0;
             }
             for (int k = 0; k < 3; ++k) {

@@ -1,0 +1,47 @@
+#include "engine/assembly/modulus_change.hpp"
+
+#include <array>
+#include <cmath>
+
+#include "engine/assembly/element_state.hpp"
+#include "kernels/corotation.hpp"
+
+namespace rockdd {
+
+std::int32_t modulus_change_terms(const Model& model, std::span<const std::int32_t> equation,
+                                  std::span<const double> damage_before, LowRankTerms& added,
+                                  LowRankTerms& removed) {
+  added.clear();
+  removed.clear();
+  const kernels::PlaneKind plane = plane_kind(model.plane);
+  std::int32_t changed = 0;
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+    // The same moduli assemble_stiffness uses, so the terms are its difference exactly.
+    const double before = damaged_young(model.young[e], damage_before[e]);
+    const double after = damaged_young(model.young[e], model.damage[e]);
+    if (after == before) continue;
+    ++changed;
+    double xy[6], d[9], w[18];
+    gather_element(model.conn, e, model.X, xy);
+    kernels::elasticity_matrix(std::abs(after - before), model.poisson[e], plane, d);
+    kernels::cst_stiffness_factor(xy, d, model.thickness, w);
+    std::array<std::int32_t, 6> rows;
+    for (int k = 0; k < 3; ++k) {
+      const std::int32_t n = model.conn[3 * e + k];
+      rows[2 * k] = equation[2 * n];
+      rows[2 * k + 1] = equation[2 * n + 1];
+    }
+    const bool turned = !model.rotation.empty() && model.rotation[e] != 0.0;
+    const kernels::Rotation turn(turned ? model.rotation[e] : 0.0);
+    LowRankTerms& terms = after > before ? added : removed;
+    for (int j = 0; j < 3; ++j) {
+      double column[6];
+      for (int a = 0; a < 6; ++a) column[a] = w[3 * a + j];
+      if (turned) kernels::rotate_nodal(turn, column);
+      terms.add_column(rows, column);
+    }
+  }
+  return changed;
+}
+
+}  // namespace rockdd

@@ -1,0 +1,21 @@
+#pragma once
+// The change of the stiffness matrix when element moduli change (a damage pass), as low-rank
+// terms that CholmodSolver::update folds into the factor instead of refactorizing.
+#include <cstdint>
+#include <span>
+
+#include "engine/model/model.hpp"
+#include "engine/solver/cholmod_solver.hpp"
+
+namespace rockdd {
+
+/// K(after) - K(before) = added C C^T - removed C C^T, where the damage of each element goes
+/// from damage_before[e] to model.damage[e]: each element whose modulus changed contributes
+/// its rank-3 stiffness factor (kernels::cst_stiffness_factor, in its co-rotated frame)
+/// scaled by sqrt(|E(after) - E(before)|). Rows are the equations of `equation` (prescribed
+/// dofs dropped). Fills `added` and `removed` (cleared first); returns the elements changed.
+std::int32_t modulus_change_terms(const Model& model, std::span<const std::int32_t> equation,
+                                  std::span<const double> damage_before, LowRankTerms& added,
+                                  LowRankTerms& removed);
+
+}  // namespace rockdd
