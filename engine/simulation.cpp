@@ -7,11 +7,13 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_state.hpp"
 #include "engine/assembly/internal_force.hpp"
+#include "engine/assembly/modulus_change.hpp"
 #include "engine/contact/contact_stage.hpp"
 #include "engine/damage/damage_stage.hpp"
 #include "engine/damage/detachment.hpp"
@@ -155,6 +157,7 @@ void Simulation::prepare_system(double mass_coefficient) {
         contact_ ? std::span<double>(base_values_) : std::span<double>(values_);
     assemble_stiffness(model_, coloring_, layout_, bc_.equation, mass_coefficient, target);
     fragments_.add_stiffness(bc_.equation, layout_.diagonal, target);
+    values_incremental_ = false;
   }
   factorized_mass_coefficient_ = mass_coefficient;
   if (contact_) return;  // factorized in every open-close iteration, with the springs
@@ -188,7 +191,7 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
   }
   if (bc_.num_equations > 0) {
     ScopedTimer timer(timers_.solve);
-    solver_.solve(state_.rhs.data(), state_.rhs.data());
+    solve_system();
   }
   for (std::size_t d = 0; d < num_dofs; ++d) {
     if (bc_.equation[d] >= 0)
@@ -216,6 +219,9 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
       model_.damage = committed_damage_;
       factorized_mass_coefficient_ = -1.0;  // the moduli changed back
     }
+    // Each step starts from a freshly assembled matrix: folded changes do not accumulate
+    // round-off from step to step.
+    if (values_incremental_) factorized_mass_coefficient_ = -1.0;
     if (scene_.analysis == Analysis::dynamic) {
       ScopedTimer timer(timers_.damage);
       state_.committed_strain.resize(model_.strain.size());
@@ -270,8 +276,10 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     for (std::size_t d = 0; d < num_dofs; ++d)
       state_.positions_settled[d] = model_.X[d] + model_.u[d];
   }
+  bool factor_current = false;  // a folded damage pass left the factor holding the next system
   for (int pass = 1;; ++pass) {
-    if (!open_close_iteration(step, retries, inertia, control)) return false;
+    if (!open_close_iteration(step, retries, inertia, control, factor_current)) return false;
+    factor_current = false;
     if (!damage_) break;
     const double released_before = energy_.attempt_damage;
     const DamageChange change = evaluate_damage();
@@ -306,7 +314,8 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
       break;
     }
     ++stats_.damage_iterations;
-    prepare_system(inertia.mass_coefficient);
+    factor_current = change.grown > 0 && fold_modulus_change(inertia.mass_coefficient);
+    prepare_system(inertia.mass_coefficient);  // nothing left to do once folded
     ScopedTimer timer(timers_.assembly);
     compute_internal_force(model_, coloring_, state_.u_trial, model_.strain, model_.stress,
                            state_.f_int, corotational_);
@@ -385,13 +394,14 @@ DamageChange Simulation::evaluate_damage() {
 }
 
 bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms& inertia,
-                                      StepControl& control) {
+                                      StepControl& control, bool factor_current) {
   const std::size_t num_dofs = model_.X.size();
   // The open-close iteration (a single solve without contacts): assume states, solve, check.
   const int limit = scene_.analysis == Analysis::dynamic ? kMaxOpenCloseIterations
                                                          : kMaxOpenCloseIterationsWithoutInertia;
   int iterations = 0;
-  bool factor_current = false;  // the factor already holds this iteration's springs
+  // factor_current: the factor already holds this iteration's system (springs switched by
+  // updates in the last iteration, or moduli folded in by the last damage pass).
   while (true) {
     ++iterations;
     solve_iteration(step, inertia, factor_current);
@@ -427,7 +437,7 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
       ScopedTimer timer(timers_.factorization);
       contact_->spring_changes(before, bc_.equation, springs_added_, springs_removed_);
       const std::int64_t columns = springs_added_.num_columns() + springs_removed_.num_columns();
-      if (solver_.update_expected_faster(columns)) {
+      if (scene_.solver.factor_updates && solver_.update_expected_faster(columns)) {
         try {
           if (springs_added_.num_columns() > 0) solver_.update(springs_added_, true);
           if (springs_removed_.num_columns() > 0) solver_.update(springs_removed_, false);
@@ -449,6 +459,84 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
     stats_.max_open_close_per_step = std::max<long>(stats_.max_open_close_per_step, iterations);
   }
   return true;
+}
+
+bool Simulation::fold_modulus_change(double mass_coefficient) {
+  if (!scene_.solver.factor_updates || bc_.num_equations == 0) return false;
+  ScopedTimer timer(timers_.factorization);
+  modulus_change_terms(model_, bc_.equation, damage_before_, moduli_added_, moduli_removed_);
+  const std::int64_t columns = moduli_added_.num_columns() + moduli_removed_.num_columns();
+  if (!solver_.update_expected_faster(columns)) return false;
+  try {
+    if (moduli_removed_.num_columns() > 0) solver_.update(moduli_removed_, false);
+    if (moduli_added_.num_columns() > 0) solver_.update(moduli_added_, true);
+  } catch (const RunFailure&) {
+    return false;  // the factor is unusable: the caller reassembles and refactorizes
+  }
+  add_modulus_change(model_, layout_, damage_before_, contact_ ? base_values_ : values_);
+  factorized_mass_coefficient_ = mass_coefficient;  // the values are current again
+  values_incremental_ = true;
+  ++stats_.folded_damage_passes;
+  return true;
+}
+
+void Simulation::solve_system() {
+  double* x = state_.rhs.data();
+  if (solver_.supernodal()) {  // a fresh factorization: as accurate as CHOLMOD makes it
+    solver_.solve(x, x);
+    return;
+  }
+  // The factor carries low-rank updates, whose round-off grows with each downdate. Iterative
+  // refinement against the assembled matrix brings the solution back to the backward error of
+  // a fresh factorization; the thresholds are multiples of the unit round-off, not physics.
+  constexpr double kRefined = 64.0 * std::numeric_limits<double>::epsilon();
+  constexpr double kTrusted = 1e-10;
+  constexpr int kMaxRefinements = 3;
+  const auto n = static_cast<std::size_t>(bc_.num_equations);
+  refine_rhs_.assign(x, x + n);
+  refine_residual_.resize(n);
+  solver_.solve(x, x);
+  const SparsityPattern& a = layout_.pattern;
+  double backward_error = 0.0;
+  for (int refinement = 0;; ++refinement) {
+    // r = b - A x over the upper triangle, against max|A| max|x| + max|b| (an SPD matrix's
+    // largest entry is on its diagonal): the normwise backward error.
+    std::copy(refine_rhs_.begin(), refine_rhs_.end(), refine_residual_.begin());
+    double scale = 0.0, residual = 0.0;
+    for (std::int32_t j = 0; j < a.n; ++j) {
+      for (std::int32_t p = a.col_ptr[j]; p < a.col_ptr[j + 1]; ++p) {
+        const std::int32_t i = a.row_idx[p];
+        const double v = values_[static_cast<std::size_t>(p)];
+        refine_residual_[i] -= v * x[j];
+        if (i != j) refine_residual_[j] -= v * x[i];
+      }
+    }
+    for (std::size_t i = 0; i < n; ++i) {
+      residual = std::max(residual, std::abs(refine_residual_[i]));
+      scale = std::max(scale, std::abs(refine_rhs_[i]));
+    }
+    double largest_x = 0.0, largest_a = 0.0;
+    for (std::size_t i = 0; i < n; ++i) largest_x = std::max(largest_x, std::abs(x[i]));
+    for (std::int32_t j = 0; j < a.n; ++j)
+      largest_a = std::max(
+          largest_a,
+          std::abs(values_[static_cast<std::size_t>(a.col_ptr[j + 1] - 1)]));  // the diagonal
+    scale += largest_a * largest_x;
+    backward_error = scale > 0.0 ? residual / scale : 0.0;
+    if (backward_error <= kRefined || refinement == kMaxRefinements) break;
+    solver_.solve(refine_residual_.data(), refine_residual_.data());
+    for (std::size_t i = 0; i < n; ++i) x[i] += refine_residual_[i];
+    ++stats_.refinement_steps;
+  }
+  if (backward_error <= kTrusted) return;
+  // Refinement could not recover: a fresh factorization of the same matrix.
+  ++stats_.refinement_refactorizations;
+  {
+    ScopedTimer timer(timers_.factorization);
+    solver_.factorize(values_.data());
+  }
+  std::copy(refine_rhs_.begin(), refine_rhs_.end(), x);
+  solver_.solve(x, x);
 }
 
 void Simulation::commit_step(double dt) {

@@ -102,10 +102,18 @@ class Simulation {
   void solve_iteration(long step, const InertiaTerms& inertia, bool factor_current = false);
   void commit_step(double dt);
   /// The open-close iteration of one step from u_trial_; false when it did not settle.
+  /// `factor_current`: the factor already holds this step's system (a folded damage pass).
   bool open_close_iteration(long step, int retries, const InertiaTerms& inertia,
-                            StepControl& control);
+                            StepControl& control, bool factor_current = false);
   /// Damage laws at the step's result u + du; moduli marked stale when damage grew.
   DamageChange evaluate_damage();
+  /// After a damage pass that changed moduli: folds K(new) - K(old) into the factor by
+  /// low-rank updates, and into the assembled values, when the cost model expects that to be
+  /// cheaper than reassembling and refactorizing (false: nothing done, the caller does that).
+  bool fold_modulus_change(double mass_coefficient);
+  /// x = K^{-1} rhs in state_.rhs, with iterative refinement against the assembled values
+  /// while the factor carries updates (refactorizing if refinement cannot recover accuracy).
+  void solve_system();
   /// After a committed step: damaged elements become blocks, and what hangs on the nodes
   /// is rebuilt for the new topology.
   void detach_fractured_elements();
@@ -145,6 +153,9 @@ class Simulation {
   std::unique_ptr<DamageStage> damage_;           // only for scenes with damageable materials
   std::vector<double> base_values_;               // K + cM without contact springs
   LowRankTerms springs_added_, springs_removed_;  // contact springs switched in an iteration
+  LowRankTerms moduli_added_, moduli_removed_;    // element stiffness changed by a damage pass
+  bool values_incremental_ = false;  // the assembled values carry folded modulus changes
+  std::vector<double> refine_rhs_, refine_residual_;  // iterative refinement's work arrays
   std::vector<std::uint8_t> detached_;            // per element
   std::vector<double> committed_damage_;          // w at the last committed step: a redone attempt
                                                   // starts from it, not from its failed attempt's

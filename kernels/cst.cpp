@@ -95,8 +95,8 @@ void cst_stiffness_factor(const double xy[6], const double d[9], double t, doubl
     const double rows[2][3] = {{b[i], 0.0, c[i]}, {0.0, c[i], b[i]}};
     for (int r = 0; r < 2; ++r)
       for (int j = 0; j < 3; ++j)
-        w[3 * (2 * i + r) + j] = scale * (rows[r][0] * l[j] + rows[r][1] * l[3 + j] +
-                                          rows[r][2] * l[6 + j]);
+        w[3 * (2 * i + r) + j] =
+            scale * (rows[r][0] * l[j] + rows[r][1] * l[3 + j] + rows[r][2] * l[6 + j]);
   }
 }
 

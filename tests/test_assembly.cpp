@@ -8,6 +8,7 @@
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/internal_force.hpp"
+#include "engine/assembly/modulus_change.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
 #include "engine/mesh/mesh.hpp"
 #include "engine/model/model.hpp"
@@ -172,6 +173,58 @@ TEST(Assembly, BitwiseIdenticalForOneAndTwoThreads) {
   EXPECT_GT(one.size(), 10000u);
   EXPECT_EQ(std::memcmp(one.data(), two.data(), one.size() * sizeof(double)), 0);
   EXPECT_EQ(std::memcmp(f_one.data(), f_two.data(), f_one.size() * sizeof(double)), 0);
+}
+
+// A damage pass changes K by K(after) - K(before); modulus_change_terms writes it as
+// added C C^T - removed C C^T (each changed element's rank-3 factor, co-rotated frame
+// included), and add_modulus_change adds it to assembled values. Both must equal the
+// difference of two full assemblies to round-off (1e-12 of the largest entry), with the
+// left edge's dofs eliminated, on turned elements, for damage that grows and (as a retried
+// step's reset does) falls.
+TEST(ModulusChange, TermsAndValuesEqualTheDifferenceOfTwoAssemblies) {
+  Assembled a = assemble(kRectangle, false);
+  Model& model = a.model;
+  model.rotation.assign(static_cast<std::size_t>(model.num_elements()), 0.0);
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) model.rotation[e] = 0.01 * (e % 17);
+  model.damage.assign(static_cast<std::size_t>(model.num_elements()), 0.0);
+  for (std::int32_t e = 0; e < model.num_elements(); e += 5) model.damage[e] = 0.3;
+  std::vector<double> before_values(a.values.size());
+  assemble_stiffness(model, a.coloring, a.layout, a.equation, 0.0, before_values);
+  const std::vector<double> damage_before = model.damage;
+  for (std::int32_t e = 0; e < model.num_elements(); e += 3) model.damage[e] = 0.9;
+  for (std::int32_t e = 0; e < model.num_elements(); e += 10) model.damage[e] = 0.1;  // healed
+  model.damage[1] = 1.0;  // fully broken: down to the stiffness floor
+  std::vector<double> after_values(a.values.size());
+  assemble_stiffness(model, a.coloring, a.layout, a.equation, 0.0, after_values);
+
+  LowRankTerms added, removed;
+  const std::int32_t changed =
+      modulus_change_terms(model, a.equation, damage_before, added, removed);
+  EXPECT_GT(changed, 0);
+  EXPECT_GT(added.num_columns(), 0);
+  EXPECT_EQ(added.num_columns() + removed.num_columns(), 3 * changed);
+  const Eigen::Index n = a.layout.pattern.n;
+  auto outer = [n](const LowRankTerms& t) {
+    Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n);
+    for (std::int32_t j = 0; j < t.num_columns(); ++j) {
+      Eigen::VectorXd c = Eigen::VectorXd::Zero(n);
+      for (std::int32_t q = t.col_ptr[j]; q < t.col_ptr[j + 1]; ++q)
+        if (t.row[q] >= 0) c(t.row[q]) += t.value[q];
+      m += c * c.transpose();
+    }
+    return m;
+  };
+  const Eigen::MatrixXd expected =
+      dense(a.layout.pattern, after_values) - dense(a.layout.pattern, before_values);
+  const double scale = dense(a.layout.pattern, before_values).cwiseAbs().maxCoeff();
+  EXPECT_LT((outer(added) - outer(removed) - expected).cwiseAbs().maxCoeff(), 1e-12 * scale);
+
+  std::vector<double> folded = before_values;
+  add_modulus_change(model, a.layout, damage_before, folded);
+  EXPECT_LT((dense(a.layout.pattern, folded) - dense(a.layout.pattern, after_values))
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-12 * scale);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <span>
 
+#include "engine/assembly/stiffness_layout.hpp"
 #include "engine/model/model.hpp"
 #include "engine/solver/cholmod_solver.hpp"
 
@@ -17,5 +18,11 @@ namespace rockdd {
 std::int32_t modulus_change_terms(const Model& model, std::span<const std::int32_t> equation,
                                   std::span<const double> damage_before, LowRankTerms& added,
                                   LowRankTerms& removed);
+
+/// values += K(after) - K(before) for the same change, element by element into the layout's
+/// entries: the assembled matrix follows the factor that update() changed, without
+/// reassembling the elements that did not change.
+void add_modulus_change(const Model& model, const StiffnessLayout& layout,
+                        std::span<const double> damage_before, std::span<double> values);
 
 }  // namespace rockdd

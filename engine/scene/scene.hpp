@@ -132,6 +132,12 @@ struct FractureSpec {
                                      // in steps without inertia
 };
 
+/// [solver]: how the linear systems are solved; changes round-off only (docs/benchmarks.md).
+struct SolverSpec {
+  bool factor_updates = true;  // fold few changed springs or moduli into the factor
+                               // (cholmod_updown) when a cost model expects it to be cheaper
+};
+
 /// [output]
 struct OutputSpec {
   std::filesystem::path dir = "out";
@@ -158,6 +164,7 @@ struct Scene {
   std::vector<LoadSpec> loads;
   std::vector<ProbeSpec> probes;
   FractureSpec fracture;
+  SolverSpec solver;
   OutputSpec output;
   /// Defaults the reader chose, as ("key.path", "value") for summary.json.
   std::vector<std::pair<std::string, std::string>> defaults;

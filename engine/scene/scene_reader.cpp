@@ -40,7 +40,7 @@ Scene parse_scene(std::string_view text, const fs::path& file,
   DefaultsLog defaults;
   TableReader root(document, "", name, defaults);
   root.allow_only({"scene", "time", "mesh", "material", "initial", "joint", "boundary", "load",
-                   "probe", "fracture", "output"});
+                   "probe", "fracture", "solver", "output"});
   Scene scene = read_scene_header(root);
   scene.file = fs::absolute(file).lexically_normal();
   scene.has_time = root.has("time");
@@ -53,9 +53,10 @@ Scene parse_scene(std::string_view text, const fs::path& file,
   scene.loads = read_loads(root);
   scene.probes = read_probes(root);
   check_softening_probe(root, scene);
-  scene.fracture = read_fracture(
-      root, std::any_of(scene.materials.begin(), scene.materials.end(),
-                        [](const MaterialSpec& m) { return m.has_damage(); }));
+  scene.fracture =
+      read_fracture(root, std::any_of(scene.materials.begin(), scene.materials.end(),
+                                      [](const MaterialSpec& m) { return m.has_damage(); }));
+  scene.solver = read_solver(root);
   scene.output = read_output(root);
   scene.defaults = std::move(defaults);
   return scene;

@@ -365,6 +365,15 @@ FractureSpec read_fracture(TableReader& root, bool has_damage) {
   return fracture;
 }
 
+SolverSpec read_solver(TableReader& root) {
+  SolverSpec solver;
+  if (!root.has("solver")) return solver;
+  TableReader table = optional_table(root, "solver");
+  table.allow_only({"factor_updates"});
+  solver.factor_updates = table.boolean("factor_updates").value_or(solver.factor_updates);
+  return solver;
+}
+
 OutputSpec read_output(TableReader& root) {
   TableReader table = optional_table(root, "output");
   table.allow_only({"dir", "every", "fields"});

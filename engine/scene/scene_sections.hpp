@@ -24,6 +24,7 @@ MeshSpec read_mesh(TableReader& root, const std::filesystem::path& scene_dir);
 FractureSpec read_fracture(TableReader& root, bool has_damage);
 
 /// [output] (optional): folder, frame interval and VTU fields.
+SolverSpec read_solver(TableReader& root);
 OutputSpec read_output(TableReader& root);
 /// time.softening_probe names a history column of the scene's probes.
 void check_softening_probe(TableReader& root, const Scene& scene);
