@@ -255,8 +255,10 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
   }
   {
     ScopedTimer timer(timers_.assembly);
+    // Each element's force is kept: a damage pass recomputes only the elements it changed.
+    state_.trial_element_force.resize(6 * static_cast<std::size_t>(model_.num_elements()));
     compute_internal_force(model_, coloring_, state_.u_trial, model_.strain, model_.stress,
-                           state_.f_int, corotational_);
+                           state_.f_int, corotational_, state_.trial_element_force);
     for (std::size_t d = 0; d < num_dofs; ++d) state_.du[d] = state_.u_trial[d] - model_.u[d];
     fragments_.forces(state_.du, state_.restraint_force);
   }
@@ -316,9 +318,15 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     ++stats_.damage_iterations;
     factor_current = change.grown > 0 && fold_modulus_change(inertia.mass_coefficient);
     prepare_system(inertia.mass_coefficient);  // nothing left to do once folded
+    // The next solve's internal force at u_trial under the new moduli: bitwise what a full
+    // recomputation gives (the same kernel per element, summed in the same order).
     ScopedTimer timer(timers_.assembly);
-    compute_internal_force(model_, coloring_, state_.u_trial, model_.strain, model_.stress,
-                           state_.f_int, corotational_);
+    state_.changed_elements.clear();
+    for (std::int32_t e = 0; e < model_.num_elements(); ++e)
+      if (model_.damage[e] != damage_before_[e]) state_.changed_elements.push_back(e);
+    refresh_element_forces(model_, state_.u_trial, state_.changed_elements,
+                           state_.trial_element_force, corotational_);
+    sum_element_forces(model_, coloring_, state_.trial_element_force, state_.f_int);
   }
   double largest = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) largest = std::max(largest, std::abs(state_.du[d]));

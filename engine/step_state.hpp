@@ -33,6 +33,8 @@ struct StepState {
                                       // nodes split after it
   std::vector<double> committed_strain, committed_stress;  // per element (3 each), at the
                                                            // committed u: dynamic damage energy
+  std::vector<double> trial_element_force;     // per element (6 each): its nodal force at u_trial
+  std::vector<std::int32_t> changed_elements;  // scratch: elements a damage pass changed
 
   /// Zeroed arrays for `num_dofs` dofs and `num_equations` equations.
   void resize(std::size_t num_dofs, std::int32_t num_equations);

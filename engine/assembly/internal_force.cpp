@@ -12,49 +12,87 @@
 
 namespace rockdd {
 
+namespace {
+
+/// One element's strain and stress (global frame) and nodal force f at displacement u.
+inline void element_internal_force(const Model& model, std::int32_t e, std::span<const double> u,
+                                   kernels::PlaneKind plane, bool corotational, double* eps,
+                                   double* sig, double f[6]) {
+  double xy[6], x[6], ue[6], d[9];
+  gather_element(model.conn, e, model.X, xy);
+  gather_element(model.conn, e, u, ue);
+  for (int k = 0; k < 6; ++k) x[k] = xy[k] + ue[k];
+  // Co-rotational: strain and stress in the element's own frame, forces turned back.
+  const double theta = corotational ? kernels::element_rotation(xy, x) : 0.0;
+  const kernels::Rotation turn(theta);
+  if (corotational) kernels::corotated_displacement(xy, x, turn, ue);
+  kernels::elasticity_matrix(damaged_young(model.young[e], model.damage[e]), model.poisson[e],
+                             plane, d);
+  kernels::cst_strain(xy, ue, eps);
+  kernels::cst_stress(d, eps, sig);
+  kernels::cst_internal_force(xy, sig, model.thickness, f);
+  if (corotational) {
+    kernels::rotate_nodal(turn, f);
+    // Reported in the global frame: sigma = R sigma' R^T, likewise the strain.
+    kernels::rotate_tensor(turn, sig);
+    eps[2] *= 0.5;
+    kernels::rotate_tensor(turn, eps);
+    eps[2] *= 2.0;
+  }
+}
+
+inline void add_element_force(const Model& model, std::int32_t e, const double f[6],
+                              std::span<double> f_int) {
+  for (int k = 0; k < 3; ++k) {
+    const std::int32_t n = model.conn[3 * e + k];
+    f_int[2 * n] += f[2 * k];
+    f_int[2 * n + 1] += f[2 * k + 1];
+  }
+}
+
+}  // namespace
+
 void compute_internal_force(const Model& model, const ElementColoring& coloring,
                             std::span<const double> u, std::span<double> strain,
-                            std::span<double> stress, std::span<double> f_int, bool corotational) {
+                            std::span<double> stress, std::span<double> f_int, bool corotational,
+                            std::span<double> element_force) {
   const kernels::PlaneKind plane = plane_kind(model.plane);
-  const double t = model.thickness;
   std::fill(f_int.begin(), f_int.end(), 0.0);
+  // Elements of one colour share no node, so each node sums its elements in colour order
+  // whatever the threads do (sum_element_forces relies on that order).
   for (std::int32_t c = 0; c < coloring.num_colors(); ++c) {
     tbb::parallel_for(
         tbb::blocked_range<std::int32_t>(coloring.offset[c], coloring.offset[c + 1], 512),
         [&](auto range) {
           for (std::int32_t i = range.begin(); i != range.end(); ++i) {
             const std::int32_t e = coloring.element[i];
-            double xy[6], x[6], ue[6], d[9], f[6];
-            gather_element(model.conn, e, model.X, xy);
-            gather_element(model.conn, e, u, ue);
-            for (int k = 0; k < 6; ++k) x[k] = xy[k] + ue[k];
-            // Co-rotational: strain and stress in the element's own frame, forces turned back.
-            const double theta = corotational ? kernels::element_rotation(xy, x) : 0.0;
-            const kernels::Rotation turn(theta);
-            if (corotational) kernels::corotated_displacement(xy, x, turn, ue);
-            kernels::elasticity_matrix(damaged_young(model.young[e], model.damage[e]),
-                                       model.poisson[e], plane, d);
-            double* eps = &strain[3 * static_cast<std::size_t>(e)];
-            double* sig = &stress[3 * static_cast<std::size_t>(e)];
-            kernels::cst_strain(xy, ue, eps);
-            kernels::cst_stress(d, eps, sig);
-            kernels::cst_internal_force(xy, sig, t, f);
-            if (corotational) {
-              kernels::rotate_nodal(turn, f);
-              // Reported in the global frame: sigma = R sigma' R^T, likewise the strain.
-              kernels::rotate_tensor(turn, sig);
-              eps[2] *= 0.5;
-              kernels::rotate_tensor(turn, eps);
-              eps[2] *= 2.0;
-            }
-            for (int k = 0; k < 3; ++k) {
-              const std::int32_t n = model.conn[3 * e + k];
-              f_int[2 * n] += f[2 * k];
-              f_int[2 * n + 1] += f[2 * k + 1];
-            }
+            const auto at = static_cast<std::size_t>(e);
+            double f[6];
+            element_internal_force(model, e, u, plane, corotational, &strain[3 * at],
+                                   &stress[3 * at], f);
+            if (!element_force.empty()) std::copy(f, f + 6, &element_force[6 * at]);
+            add_element_force(model, e, f, f_int);
           }
         });
   }
+}
+
+void refresh_element_forces(const Model& model, std::span<const double> u,
+                            std::span<const std::int32_t> elements, std::span<double> element_force,
+                            bool corotational) {
+  const kernels::PlaneKind plane = plane_kind(model.plane);
+  for (const std::int32_t e : elements) {
+    double eps[3], sig[3];
+    element_internal_force(model, e, u, plane, corotational, eps, sig,
+                           &element_force[6 * static_cast<std::size_t>(e)]);
+  }
+}
+
+void sum_element_forces(const Model& model, const ElementColoring& coloring,
+                        std::span<const double> element_force, std::span<double> f_int) {
+  std::fill(f_int.begin(), f_int.end(), 0.0);
+  for (const std::int32_t e : coloring.element)
+    add_element_force(model, e, &element_force[6 * static_cast<std::size_t>(e)], f_int);
 }
 
 double largest_rotation_change(const Model& model, std::span<const double> u) {

@@ -13,10 +13,22 @@ namespace rockdd {
 /// frame) and the nodal internal force `f_int` (2 per node). `corotational` measures strain in
 /// each element's rotated frame (blocks that turn); without it, small strain, f_int = K u
 /// exactly (static analysis). Deterministic for any thread count.
+/// With `element_force` (6 per element), each element's nodal force is kept there too.
 void compute_internal_force(const Model& model, const ElementColoring& coloring,
                             std::span<const double> u, std::span<double> strain,
                             std::span<double> stress, std::span<double> f_int,
-                            bool corotational = false);
+                            bool corotational = false, std::span<double> element_force = {});
+
+/// Recomputes the nodal force of `elements` at displacement `u` in `element_force` (6 per
+/// element): after a damage pass, only the elements whose modulus changed.
+void refresh_element_forces(const Model& model, std::span<const double> u,
+                            std::span<const std::int32_t> elements, std::span<double> element_force,
+                            bool corotational);
+
+/// f_int from the elements' nodal forces, summed in the colouring's order: bitwise what
+/// compute_internal_force gives for the same element forces, for any thread count.
+void sum_element_forces(const Model& model, const ElementColoring& coloring,
+                        std::span<const double> element_force, std::span<double> f_int);
 
 /// Largest change of any element's rotation, at displacement `u`, since its frame in K
 /// (Model::rotation) was set: how stale the stiffness is. Deterministic.
