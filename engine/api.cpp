@@ -23,6 +23,7 @@ BuiltModel build_scene_model_reported(const Scene& scene) {
     mesh = build_mesh_with_cache(scene.mesh, scene.file, mesh_cache_dir());
   }
   built.setup.mesh_cache = mesh.cache;
+  built.mesh_slot = std::move(mesh.slot);
   ScopedTimer timer(built.setup.model);
   built.model = build_model(scene, std::move(mesh.mesh));
   assign_element_strengths(scene, built.model);

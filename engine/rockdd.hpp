@@ -29,6 +29,9 @@ Model build_scene_model(const Scene& scene);
 struct BuiltModel {
   Model model;
   SetupReport setup;  // meshing, model and the mesh cache's outcome (scene and startup: unset)
+  /// Where the mesh is kept in the mesh cache (none when the cache is off or cannot hold it):
+  /// pass it to the Simulation, which keeps its fill-reducing ordering there too.
+  std::optional<MeshCacheSlot> mesh_slot;
 };
 
 /// build_scene_model, timed: pass `setup` on in RunOptions for a summary that accounts for it.

@@ -77,8 +77,8 @@ std::filesystem::path run_folder(const Scene& scene, const RunOptions& options) 
   return (options.out_root.empty() ? scene.output.dir : options.out_root) / scene.name;
 }
 
-Simulation::Simulation(Scene scene, Model model)
-    : scene_(std::move(scene)), model_(std::move(model)) {
+Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> mesh_slot)
+    : scene_(std::move(scene)), model_(std::move(model)), mesh_slot_(std::move(mesh_slot)) {
   ScopedTimer timer(setup_timers_.other);
   // Blocks that move turn: their strain is measured in co-rotated frames. A static analysis
   // restrains every block and solves once, small strain (f_int = K u exactly).
@@ -144,9 +144,34 @@ void Simulation::rebuild_layout() {
   if (contact_) base_values_.assign(values_.size(), 0.0);
   if (bc_.num_equations > 0) {
     ScopedTimer analysis_timer(timers_.analysis);
-    solver_.analyze(layout_.pattern);
+    analyze_layout();
   }
+  mesh_slot_.reset();  // later layouts follow the contacts: computed each time, not stored
   factorized_mass_coefficient_ = -1.0;  // the values must be assembled into the new pattern
+}
+
+void Simulation::analyze_layout() {
+  const SparsityPattern& pattern = layout_.pattern;
+  if (!mesh_slot_) {
+    solver_.analyze(pattern);
+    return;
+  }
+  // The stored entry holds the pattern it was computed for: another restraint, contact or
+  // model of the same mesh is a miss, never another pattern's ordering.
+  const std::string key = solver_.ordering_key();
+  if (std::optional<CachedOrdering> stored =
+          read_cached_ordering(*mesh_slot_, key, pattern.col_ptr, pattern.row_idx)) {
+    if (const std::optional<FillOrdering> method = fill_ordering_from_name(stored->method)) {
+      solver_.analyze_given(pattern, stored->perm, *method);
+      ordering_cache_ = MeshCacheOutcome::hit;
+      return;
+    }
+  }
+  solver_.analyze(pattern);
+  write_cached_ordering(
+      *mesh_slot_, key, pattern.col_ptr, pattern.row_idx,
+      {solver_.permutation(), std::string(fill_ordering_name(solver_.stats().ordering))});
+  ordering_cache_ = MeshCacheOutcome::miss;
 }
 
 void Simulation::prepare_system(double mass_coefficient) {
@@ -974,6 +999,7 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
                  {"updated_columns", st.updated_columns},
                  {"nonzeros", layout_.pattern.nnz()},
                  {"ordering", std::string(fill_ordering_name(st.ordering))},
+                 {"ordering_cache", mesh_cache_outcome_name(ordering_cache_)},
                  {"factor_nonzeros", st.factor_nonzeros},
                  {"factor_flops", st.last_factor_flops}};
   return s;

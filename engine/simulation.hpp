@@ -74,8 +74,12 @@ struct RunResult {
 class Simulation {
  public:
   /// Throws InputError for a scene the model cannot satisfy (unknown names, unrestrained
-  /// static blocks).
-  Simulation(Scene scene, Model model);
+  /// static blocks). With `mesh_slot` (BuiltModel::mesh_slot: where the model's mesh is kept
+  /// in the mesh cache), the fill-reducing ordering of the first CHOLMOD analysis is taken
+  /// from beside the mesh when one was stored for exactly this pattern, and stored there
+  /// otherwise: the same ordering, so bitwise the same factor and results, without computing
+  /// it again.
+  Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> mesh_slot = std::nullopt);
   ~Simulation();
   Simulation(const Simulation&) = delete;
   Simulation& operator=(const Simulation&) = delete;
@@ -97,6 +101,9 @@ class Simulation {
   void prepare_system(double mass_coefficient);
   /// Pattern of elements plus current contact triples; CHOLMOD analysis of it.
   void rebuild_layout();
+  /// CHOLMOD's analysis of layout_.pattern; the first one through the ordering cache beside
+  /// the mesh (mesh_slot_) when there is one.
+  void analyze_layout();
   /// Solves one open-close iteration: springs, factorization (unless `factor_current`: the
   /// factor was updated for the springs that switched), solve; fills du_.
   void solve_iteration(long step, const InertiaTerms& inertia, bool factor_current = false);
@@ -145,6 +152,8 @@ class Simulation {
   ElementColoring coloring_;
   StiffnessLayout layout_;
   CholmodSolver solver_;
+  std::optional<MeshCacheSlot> mesh_slot_;  // until the first analysis has used it
+  MeshCacheOutcome ordering_cache_ = MeshCacheOutcome::off;
   std::vector<double> values_;
   double factorized_mass_coefficient_ = -1.0;
   bool corotational_ = false;  // strain in co-rotated element frames (not in static analysis)

@@ -28,7 +28,9 @@ RunOptions run_options(const RunSettings& settings) {
 Simulation::Simulation(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   translate_errors([&] {
     const rockdd::Scene& s = SceneAccess::scene(scene);
-    impl_->simulation = std::make_unique<rockdd::Simulation>(s, build_scene_model(s));
+    BuiltModel built = build_scene_model_reported(s);
+    impl_->simulation =
+        std::make_unique<rockdd::Simulation>(s, std::move(built.model), std::move(built.mesh_slot));
   });
 }
 

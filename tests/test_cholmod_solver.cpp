@@ -267,6 +267,82 @@ TEST(CholmodSolver, EveryOrderingSolvesTheSameSystemToRoundOff) {
   }
 }
 
+TEST(CholmodSolver, AnalysisGivenAnEarlierOrderingIsBitwiseThatAnalysis) {
+  // analyze_given(permutation() of an earlier analysis) is what a stored ordering replays:
+  // the same elimination order, factor size and kept method, and bitwise the same solution,
+  // for every strategy (METIS's and CHOLMOD's orderings are postordered by CHOLMOD: the given
+  // one is taken as it is).
+  std::mt19937 rng(29);
+  const SymmetricMatrix a =
+      without_equations(grid_matrix(40, 33, rng), [](std::int32_t i) { return i % 13 == 5; });
+  SparsityPattern pattern;
+  std::vector<double> values;
+  a.compress(pattern, values);
+  const std::vector<double> b = random_vector(static_cast<std::size_t>(a.n), rng);
+  for (const FillOrdering ordering :
+       {FillOrdering::cholmod, FillOrdering::cholmod_amd, FillOrdering::node_metis,
+        FillOrdering::node_amd, FillOrdering::node}) {
+    SCOPED_TRACE(std::string(fill_ordering_name(ordering)));
+    CholmodSolver first(ordering);
+    first.analyze(pattern);
+    first.factorize(values.data());
+    CholmodSolver replay(ordering);
+    replay.analyze_given(pattern, first.permutation(), first.stats().ordering);
+    replay.factorize(values.data());
+    EXPECT_EQ(replay.permutation(), first.permutation());
+    EXPECT_EQ(replay.stats().ordering, first.stats().ordering);
+    EXPECT_EQ(replay.stats().factor_nonzeros, first.stats().factor_nonzeros);
+    EXPECT_EQ(replay.stats().analysis_flops, first.stats().analysis_flops);
+    EXPECT_EQ(solve(replay, b), solve(first, b));  // bit for bit
+  }
+  // A node_metis ordering is kept by the default strategy on a large enough grid: replayed
+  // the same way.
+  CholmodSolver metis(FillOrdering::node_metis);
+  metis.analyze(pattern);
+  CholmodSolver replay;
+  replay.analyze_given(pattern, metis.permutation(), FillOrdering::node_metis);
+  EXPECT_EQ(replay.stats().ordering, FillOrdering::node_metis);
+  EXPECT_EQ(replay.permutation(), metis.permutation());
+}
+
+TEST(CholmodSolver, AGivenOrderingMustBeAPermutationOfTheEquations) {
+  std::mt19937 rng(31);
+  const SymmetricMatrix a = grid_matrix(6, 5, rng);
+  SparsityPattern pattern;
+  std::vector<double> values;
+  a.compress(pattern, values);
+  std::vector<std::int32_t> perm(static_cast<std::size_t>(a.n));
+  for (std::int32_t k = 0; k < a.n; ++k) perm[k] = a.n - 1 - k;
+  CholmodSolver solver;
+  std::vector<std::int32_t> bad = perm;
+  bad.pop_back();  // one short
+  EXPECT_THROW(solver.analyze_given(pattern, bad, FillOrdering::node_amd), std::invalid_argument);
+  bad = perm;
+  bad[3] = bad[4];  // a repeat
+  EXPECT_THROW(solver.analyze_given(pattern, bad, FillOrdering::node_amd), std::invalid_argument);
+  bad = perm;
+  bad[0] = a.n;  // out of range
+  EXPECT_THROW(solver.analyze_given(pattern, bad, FillOrdering::node_amd), std::invalid_argument);
+  EXPECT_FALSE(solver.analyzed());
+  solver.analyze_given(pattern, perm, FillOrdering::node_amd);  // any permutation is valid
+  solver.factorize(values.data());
+  const std::vector<double> b = random_vector(static_cast<std::size_t>(a.n), rng);
+  EXPECT_LT(relative_residual(a, solve(solver, b), b), 1e-12);
+  EXPECT_EQ(solver.permutation(), perm);
+}
+
+TEST(CholmodSolver, TheOrderingKeyNamesStrategyAndLibraries) {
+  const std::string key = CholmodSolver(FillOrdering::node).ordering_key();
+  EXPECT_NE(key, CholmodSolver(FillOrdering::node_metis).ordering_key());
+  for (const char* part : {"ordering node ", "cholmod ", "amd ", "metis ", "solver code "})
+    EXPECT_NE(key.find(part), std::string::npos) << part;
+  for (const FillOrdering o :
+       {FillOrdering::cholmod, FillOrdering::node_metis, FillOrdering::node_amd, FillOrdering::node,
+        FillOrdering::cholmod_amd})
+    EXPECT_EQ(fill_ordering_from_name(fill_ordering_name(o)), o);
+  EXPECT_FALSE(fill_ordering_from_name("metis"));
+}
+
 TEST(CholmodSolver, UpdatesWorkInTheNodeOrdering) {
   std::mt19937 rng(14);
   const int nx = 16, ny = 14;

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
@@ -113,6 +115,59 @@ TEST(CommandLine, ASecondRunTakesItsMeshFromTheCacheAndGivesTheSameResults) {
     const std::string first = test::read_text(tmp.path() / "first/brazilian-disk-elastic" / file);
     EXPECT_EQ(test::read_text(tmp.path() / "second/brazilian-disk-elastic" / file), first) << file;
     EXPECT_EQ(test::read_text(tmp.path() / "off/brazilian-disk-elastic" / file), first) << file;
+  }
+}
+
+TEST(CommandLine, AStoredOrderingGivesBitwiseTheResultsOfComputingIt) {
+  // The fill-reducing ordering is kept beside the cached mesh: a run that reads it (hit)
+  // writes bitwise the files of one that computed it (miss) and of one without a cache; a
+  // damaged stored ordering is a miss, computed and stored again.
+  test::TempDir tmp;
+  const std::string scene = (kSource / "data/brazilian_disk_elastic.toml").string();
+  const std::filesystem::path cache_dir = tmp.path() / "cache";
+  const std::string cache = " --mesh-cache '" + cache_dir.string() + "'";
+  const auto run = [&](const std::string& out, const std::string& cache_option) {
+    ASSERT_EQ(
+        rockdd_cli("run '" + scene + "' --quiet --out " + out + cache_option, tmp.path()).exit_code,
+        0);
+  };
+  const auto summary = [&](const std::string& out) {
+    return nlohmann::json::parse(
+        test::read_text(tmp.path() / out / "brazilian-disk-elastic/summary.json"));
+  };
+  const auto order_entry = [&] {
+    std::vector<std::filesystem::path> found;
+    for (const auto& e : std::filesystem::directory_iterator(cache_dir))
+      if (e.path().extension() == ".order") found.push_back(e.path());
+    return found;
+  };
+  run("miss", cache);
+  run("hit", cache);
+  ASSERT_EQ(order_entry().size(), 1u);
+  const std::filesystem::path entry = order_entry().front();
+  {
+    const auto size = std::filesystem::file_size(entry);
+    std::fstream f(entry, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(static_cast<std::streamoff>(size - size / 10));  // inside the stored ordering
+    f.put('\x55');
+  }
+  run("mangled", cache);
+  run("again", cache);
+  run("off", " --mesh-cache off");
+  EXPECT_EQ(summary("miss")["solver"]["ordering_cache"], "miss");
+  EXPECT_EQ(summary("hit")["solver"]["ordering_cache"], "hit");
+  EXPECT_EQ(summary("mangled")["solver"]["ordering_cache"], "miss");
+  EXPECT_EQ(summary("again")["solver"]["ordering_cache"], "hit");
+  EXPECT_EQ(summary("off")["solver"]["ordering_cache"], "off");
+  for (const char* out : {"hit", "mangled", "again", "off"}) {
+    SCOPED_TRACE(out);
+    for (const char* key : {"ordering", "factor_nonzeros", "factor_flops", "nonzeros"})
+      EXPECT_EQ(summary(out)["solver"][key], summary("miss")["solver"][key]) << key;
+    for (const char* file :
+         {"history.csv", "frames/frame_00001.vtu", "profiles/diameter_000001.csv"})
+      EXPECT_EQ(test::read_text(tmp.path() / out / "brazilian-disk-elastic" / file),
+                test::read_text(tmp.path() / "miss/brazilian-disk-elastic" / file))
+          << file;
   }
 }
 

@@ -1,11 +1,15 @@
 // The mesh cache (engine/mesh/mesh_cache): a hit is bitwise the mesh Gmsh makes, anything
 // the mesh depends on changes the key, and a damaged entry is a miss, never a wrong mesh.
+// The orderings kept beside the meshes: read back only for their mesh, key and exact
+// pattern, and a damaged one is a miss.
 // Also: a mesh does not depend on what the process meshed before (engine/mesh/gmsh_session).
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <random>
 #include <string>
 
@@ -200,6 +204,105 @@ TEST(MeshCache, AnUnwritableFolderCostsARemeshNotTheRun) {
   const CachedMesh mesh = build_mesh_with_cache(disk(3e-3), kScene, "/proc/rockdd-cannot-be-here");
   EXPECT_EQ(mesh.cache, MeshCacheOutcome::miss);
   EXPECT_GT(mesh.mesh.num_elements(), 0u);
+}
+
+/// A small upper-triangular pattern (a path of n equations) and an ordering of it.
+struct OrderingCase {
+  std::vector<std::int32_t> col_ptr{0}, row_idx;
+  CachedOrdering ordering;
+  explicit OrderingCase(std::int32_t n) {
+    for (std::int32_t c = 0; c < n; ++c) {
+      if (c > 0) row_idx.push_back(c - 1);
+      row_idx.push_back(c);
+      col_ptr.push_back(static_cast<std::int32_t>(row_idx.size()));
+      ordering.perm.push_back(n - 1 - c);
+    }
+    ordering.method = "node_metis";
+  }
+};
+
+TEST(OrderingCache, AnOrderingIsReadBackOnlyForItsMeshKeyAndPattern) {
+  CacheDir cache;
+  const MeshCacheSlot slot{cache.path(), mesh_cache_key(disk(2e-3)).value()};
+  const OrderingCase c(50);
+  EXPECT_FALSE(read_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx));
+  write_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx, c.ordering);
+  const std::optional<CachedOrdering> read =
+      read_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx);
+  ASSERT_TRUE(read);
+  EXPECT_EQ(read->perm, c.ordering.perm);
+  EXPECT_EQ(read->method, "node_metis");
+  // Another ordering strategy, another mesh, another pattern of the same size: misses.
+  EXPECT_FALSE(read_cached_ordering(slot, "ordering node_amd", c.col_ptr, c.row_idx));
+  const MeshCacheSlot other_mesh{cache.path(), mesh_cache_key(disk(3e-3)).value()};
+  EXPECT_FALSE(read_cached_ordering(other_mesh, "ordering node", c.col_ptr, c.row_idx));
+  OrderingCase other(50);
+  other.row_idx[3] = 0;  // column 2 couples 0 instead of 1
+  EXPECT_FALSE(read_cached_ordering(slot, "ordering node", other.col_ptr, other.row_idx));
+  // ... even when that pattern's file name is made to hold the entry: the entry holds the
+  // pattern and the key it was written for.
+  std::filesystem::copy_file(
+      cached_ordering_path(slot, "ordering node", c.col_ptr, c.row_idx),
+      cached_ordering_path(slot, "ordering node", other.col_ptr, other.row_idx));
+  EXPECT_FALSE(read_cached_ordering(slot, "ordering node", other.col_ptr, other.row_idx));
+  std::filesystem::copy_file(
+      cached_ordering_path(slot, "ordering node", c.col_ptr, c.row_idx),
+      cached_ordering_path(other_mesh, "ordering node", c.col_ptr, c.row_idx));
+  EXPECT_FALSE(read_cached_ordering(other_mesh, "ordering node", c.col_ptr, c.row_idx));
+  // Orderings live beside the mesh entries, under a name of their own.
+  EXPECT_EQ(cached_ordering_path(slot, "ordering node", c.col_ptr, c.row_idx).extension(),
+            ".order");
+}
+
+TEST(OrderingCache, ADamagedOrderingIsAMissNeverAnotherOrdering) {
+  CacheDir cache;
+  const MeshCacheSlot slot{cache.path(), mesh_cache_key(disk(2e-3)).value()};
+  const OrderingCase c(200);
+  write_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx, c.ordering);
+  const std::filesystem::path entry =
+      cached_ordering_path(slot, "ordering node", c.col_ptr, c.row_idx);
+  const auto size = std::filesystem::file_size(entry);
+  // Every byte of the entry, one at a time: flipped, the entry is not read.
+  const std::string original = [&] {
+    std::ifstream in(entry, std::ios::binary);
+    return std::string{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  }();
+  for (std::size_t at = 0; at < size; at += 7) {
+    std::string mangled = original;
+    mangled[at] = static_cast<char>(mangled[at] ^ 0x10);
+    std::ofstream(entry, std::ios::binary | std::ios::trunc) << mangled;
+    EXPECT_FALSE(read_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx)) << at;
+  }
+  std::ofstream(entry, std::ios::binary | std::ios::trunc) << original.substr(0, size / 2);
+  EXPECT_FALSE(read_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx));
+  // Written again, it is read again.
+  write_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx, c.ordering);
+  EXPECT_TRUE(read_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx));
+  // A "permutation" that repeats an equation is refused even with a valid checksum.
+  CachedOrdering repeated = c.ordering;
+  repeated.perm[5] = repeated.perm[6];
+  write_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx, repeated);
+  EXPECT_FALSE(read_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx));
+}
+
+TEST(OrderingCache, AnUnwritableFolderCostsAnOrderingNotTheRun) {
+  const OrderingCase c(10);
+  const MeshCacheSlot slot{"/proc/rockdd-cannot-be-here", "key"};
+  write_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx, c.ordering);
+  EXPECT_FALSE(read_cached_ordering(slot, "ordering node", c.col_ptr, c.row_idx));
+}
+
+TEST(MeshCache, AHitOrAMissNamesWhereTheMeshIsKept) {
+  CacheDir cache;
+  const MeshSpec spec = disk(3e-3);
+  const CachedMesh miss = build_mesh_with_cache(spec, kScene, cache.path());
+  const CachedMesh hit = build_mesh_with_cache(spec, kScene, cache.path());
+  for (const CachedMesh* m : {&miss, &hit}) {
+    ASSERT_TRUE(m->slot);
+    EXPECT_EQ(m->slot->dir, cache.path());
+    EXPECT_EQ(m->slot->key, mesh_cache_key(spec).value());
+  }
+  EXPECT_FALSE(build_mesh_with_cache(spec, kScene, std::nullopt).slot);
 }
 
 // Gmsh kept state across meshes in one process: the interior nodes of a transfinite rectangle

@@ -186,7 +186,7 @@ int run(const Command& cmd, std::optional<double> startup) {
   rockdd::BuiltModel built = rockdd::build_scene_model_reported(scene);
   built.setup.startup = startup;
   built.setup.scene = scene_seconds;
-  rockdd::Simulation sim(scene, std::move(built.model));
+  rockdd::Simulation sim(scene, std::move(built.model), std::move(built.mesh_slot));
   Progress progress(cmd.quiet);
   rockdd::RunOptions options;
   options.setup = built.setup;

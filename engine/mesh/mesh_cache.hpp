@@ -2,9 +2,12 @@
 // Meshes kept between runs: a run of an unchanged geometry, size and mesher skips Gmsh.
 // An entry is one file named by a hash of everything the mesh depends on; it holds that
 // description in full (so a hash collision is a miss, never a wrong mesh) and a checksum.
+#include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
+#include <vector>
 
 #include "engine/mesh/mesh.hpp"
 #include "engine/scene/scene.hpp"
@@ -19,10 +22,19 @@ enum class MeshCacheOutcome {
   uncacheable,  // meshed: a .geo that reads other files, or a file that could not be read
 };
 
+/// Where a mesh is kept in the cache: the folder and the mesh's key. What is computed from the
+/// mesh and kept too (the fill-reducing ordering of its system) is stored next to it, under
+/// this key plus its own.
+struct MeshCacheSlot {
+  std::filesystem::path dir;
+  std::string key;
+};
+
 /// A mesh and where it came from.
 struct CachedMesh {
   Mesh mesh;
   MeshCacheOutcome cache = MeshCacheOutcome::off;
+  std::optional<MeshCacheSlot> slot;  // set on a hit or a miss
 };
 
 /// build_mesh, through the cache in `cache_dir` (nullopt: no cache). A hit is bitwise the
@@ -52,5 +64,34 @@ std::optional<Mesh> read_cached_mesh(const std::filesystem::path& dir, const std
 /// runs and a killed one leave either a whole entry or none. Failures are ignored: a cache
 /// that cannot be written costs a remesh next time, not the run.
 void write_cached_mesh(const std::filesystem::path& dir, const std::string& key, const Mesh& mesh);
+
+/// A fill-reducing ordering kept next to a cached mesh: the elimination order of the
+/// equations (perm[k]: the equation eliminated k-th) and the name of the method that made it.
+struct CachedOrdering {
+  std::vector<std::int32_t> perm;
+  std::string method;
+};
+
+/// The ordering stored for the mesh of `slot`, the ordering described by `ordering_key`
+/// (strategy, library versions, code) and exactly this symmetric pattern (its upper triangle
+/// as compressed columns, which the entry holds in full); nullopt when there is none, or it
+/// was written for another mesh, key or pattern, or it is damaged (short, bad checksum, not a
+/// permutation): a miss, never an error and never another pattern's ordering.
+std::optional<CachedOrdering> read_cached_ordering(const MeshCacheSlot& slot,
+                                                   const std::string& ordering_key,
+                                                   std::span<const std::int32_t> col_ptr,
+                                                   std::span<const std::int32_t> row_idx);
+
+/// Stores `ordering` for that mesh, key and pattern, atomically; failures are ignored, as
+/// write_cached_mesh's are.
+void write_cached_ordering(const MeshCacheSlot& slot, const std::string& ordering_key,
+                           std::span<const std::int32_t> col_ptr,
+                           std::span<const std::int32_t> row_idx, const CachedOrdering& ordering);
+
+/// The file of the ordering entry read_cached_ordering() looks for (for tests).
+std::filesystem::path cached_ordering_path(const MeshCacheSlot& slot,
+                                           const std::string& ordering_key,
+                                           std::span<const std::int32_t> col_ptr,
+                                           std::span<const std::int32_t> row_idx);
 
 }  // namespace rockdd

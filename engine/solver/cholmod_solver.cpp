@@ -1,7 +1,9 @@
 #include "engine/solver/cholmod_solver.hpp"
 
+#include <amd.h>
 #include <cholmod.h>
 #include <malloc.h>
+#include <metis.h>
 #include <oneapi/tbb/global_control.h>
 
 #include <algorithm>
@@ -15,6 +17,10 @@
 
 #include "engine/errors.hpp"
 #include "engine/solver/serial_openmp_regions.hpp"
+
+#ifndef ROCKDD_SOLVER_CODE_HASH
+#error "ROCKDD_SOLVER_CODE_HASH: the build's hash of engine/solver (engine/solver/CMakeLists.txt)"
+#endif
 
 extern "C" {
 // OpenBLAS's own thread control (declared in its cblas.h, whose path depends on the variant).
@@ -351,16 +357,76 @@ void CholmodSolver::analyze(const SparsityPattern& pattern) {
     std::vector<std::int32_t> given = node_graph_ordering(pattern, ordering_);
     s.symbolic = s.analyze_with(pattern, given.data(), -1);
   }
+  finish_analysis(pattern, kept, start);
+}
+
+void CholmodSolver::analyze_given(const SparsityPattern& pattern,
+                                  std::span<const std::int32_t> perm, FillOrdering kept) {
+  State& s = *state_;
+  SerialOpenMpRegions serial;
+  const auto start = std::chrono::steady_clock::now();
+  if (perm.size() != static_cast<std::size_t>(pattern.n))
+    throw std::invalid_argument("CholmodSolver::analyze_given: " + std::to_string(perm.size()) +
+                                " entries for " + std::to_string(pattern.n) + " equations");
+  std::vector<std::uint8_t> seen(perm.size(), 0);
+  for (const std::int32_t e : perm) {
+    if (e < 0 || e >= pattern.n || seen[e])
+      throw std::invalid_argument("CholmodSolver::analyze_given: not a permutation");
+    seen[e] = 1;
+  }
+  cholmod_free_factor(&s.factor, &s.common);
+  cholmod_free_factor(&s.symbolic, &s.common);
+  s.factor_ready = false;
+  s.n = pattern.n;
+  // The factor's own pattern, tril(P A P^T), is built first and analysed in its natural
+  // order: CHOLMOD then permutes nothing (given P and A, it would build P A P^T twice, once for
+  // the column counts and once for the supernodes). The order stored by an earlier analysis
+  // was postordered then; postordering it again is the identity in exact arithmetic but need
+  // not keep ties as they were, so it is skipped.
+  s.perm.assign(perm.begin(), perm.end());
+  s.inverse_perm.resize(static_cast<std::size_t>(pattern.n));
+  for (std::int32_t k = 0; k < pattern.n; ++k) s.inverse_perm[s.perm[k]] = k;
+  s.build_permuted_lower(pattern);
+  const bool postorder = s.common.postorder;
+  s.common.postorder = false;
+  s.common.nmethods = 1;
+  s.common.method[0].ordering = CHOLMOD_NATURAL;
+  s.symbolic = cholmod_analyze(&s.lower, &s.common);
+  s.common.postorder = postorder;
+  finish_analysis(pattern, kept, start, true);
+}
+
+const std::vector<std::int32_t>& CholmodSolver::permutation() const {
+  return state_->perm;
+}
+
+std::string CholmodSolver::ordering_key() const {
+  int cholmod[3] = {0, 0, 0};
+  cholmod_version(cholmod);
+  return "ordering " + std::string(fill_ordering_name(ordering_)) + " cholmod " +
+         std::to_string(cholmod[0]) + '.' + std::to_string(cholmod[1]) + '.' +
+         std::to_string(cholmod[2]) + " amd " + std::to_string(AMD_MAIN_VERSION) + '.' +
+         std::to_string(AMD_SUB_VERSION) + '.' + std::to_string(AMD_SUBSUB_VERSION) + " metis " +
+         std::to_string(METIS_VER_MAJOR) + '.' + std::to_string(METIS_VER_MINOR) + '.' +
+         std::to_string(METIS_VER_SUBMINOR) + " solver code " + ROCKDD_SOLVER_CODE_HASH;
+}
+
+void CholmodSolver::finish_analysis(const SparsityPattern& pattern, FillOrdering kept,
+                                    std::chrono::steady_clock::time_point start,
+                                    bool permuted_already) {
+  State& s = *state_;
   if (s.symbolic == nullptr || s.common.status < CHOLMOD_OK)
     throw std::runtime_error("CHOLMOD analysis failed (status " + std::to_string(s.common.status) +
                              ")");
   // The analysis leaves the factorization's flop count in Common->fl.
   s.blas_threads = s.common.fl > kParallelBlasFlops ? openblas_get_num_threads() : 1;
   auto* perm = static_cast<std::int32_t*>(s.symbolic->Perm);
-  s.perm.assign(perm, perm + pattern.n);
-  s.inverse_perm.resize(static_cast<std::size_t>(pattern.n));
-  for (std::int32_t k = 0; k < pattern.n; ++k) s.inverse_perm[s.perm[k]] = k;
-  s.build_permuted_lower(pattern);
+  if (!permuted_already) {
+    s.perm.assign(perm, perm + pattern.n);
+    s.inverse_perm.resize(static_cast<std::size_t>(pattern.n));
+    for (std::int32_t k = 0; k < pattern.n; ++k) s.inverse_perm[s.perm[k]] = k;
+    s.build_permuted_lower(pattern);
+  }
   // The factor now describes P A P^T in its own numbering: CHOLMOD is told that its ordering
   // is the natural one, so that it factorizes the lower triangle as given (no transpose) and
   // solves without permuting; solve() applies P itself.

@@ -2,9 +2,11 @@
 // CHOLMOD supernodal Cholesky with its symbolic and numeric phases kept apart:
 // analyze once per sparsity pattern, factorize whenever the values change, solve often,
 // and modify the factor by a low-rank term (A +/- C C^T) when only a few springs change.
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "engine/assembly/sparsity_pattern.hpp"
@@ -55,6 +57,20 @@ class CholmodSolver {
   /// A node-graph ordering is given to CHOLMOD, which then tries no other. The analysis keeps
   /// the lower triangle of the permuted pattern, P A P^T, that factorize() hands to CHOLMOD.
   void analyze(const SparsityPattern& pattern);
+  /// Symbolic analysis with a known elimination order: `perm` is permutation() of an earlier
+  /// analysis of the same pattern (perm[k]: the equation eliminated k-th). CHOLMOD takes it as
+  /// it is (no postordering, no other method), so the analysis, and every factor of it, is
+  /// bitwise that earlier analysis's; `kept` is the ordering stats() then reports. Throws
+  /// std::invalid_argument when perm is not a permutation of the pattern's equations.
+  void analyze_given(const SparsityPattern& pattern, std::span<const std::int32_t> perm,
+                     FillOrdering kept);
+  /// The elimination order of the last analysis: perm[k] is the equation of the factor's
+  /// column k. Empty before an analysis.
+  const std::vector<std::int32_t>& permutation() const;
+  /// What the orderings of this solver depend on besides the pattern, as text: the strategy
+  /// of the constructor, the versions of CHOLMOD, AMD and METIS, and a hash of the solver's
+  /// code. Part of the key of a stored ordering.
+  std::string ordering_key() const;
   /// Numeric factorization of the analysed pattern with these values (pattern order), always
   /// supernodal LL^T, whatever updates the previous factor went through.
   /// Throws RunFailure naming the column when the matrix is not positive definite.
@@ -84,6 +100,11 @@ class CholmodSolver {
   const SolverStats& stats() const { return stats_; }
 
  private:
+  /// After CHOLMOD's analysis: the ordering taken out of the factor and tril(P A P^T) (unless
+  /// `permuted_already`: analyze_given() built them before), stats.
+  void finish_analysis(const SparsityPattern& pattern, FillOrdering kept,
+                       std::chrono::steady_clock::time_point start, bool permuted_already = false);
+
   struct State;
   std::unique_ptr<State> state_;
   SolverStats stats_;

@@ -72,6 +72,14 @@ std::string_view fill_ordering_name(FillOrdering ordering) {
   return "unknown";
 }
 
+std::optional<FillOrdering> fill_ordering_from_name(std::string_view name) {
+  for (const FillOrdering o :
+       {FillOrdering::cholmod, FillOrdering::node_metis, FillOrdering::node_amd, FillOrdering::node,
+        FillOrdering::cholmod_amd})
+    if (fill_ordering_name(o) == name) return o;
+  return std::nullopt;
+}
+
 std::vector<std::int32_t> equation_groups(const SparsityPattern& pattern) {
   return groups_of(closed_adjacency(pattern), pattern.n);
 }

@@ -5,6 +5,7 @@
 // vertices, a quarter of the edges of the dof graph in 2D) and keeping each group's
 // equations together gives the same fill as ordering the dof graph, for much less work.
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -22,6 +23,8 @@ enum class FillOrdering {
 };
 
 std::string_view fill_ordering_name(FillOrdering ordering);
+/// The ordering fill_ordering_name() calls `name`; nullopt for any other text.
+std::optional<FillOrdering> fill_ordering_from_name(std::string_view name);
 
 /// The equations cut into runs of consecutive equations whose columns of the full symmetric
 /// pattern (diagonal included) are identical: run g is [start[g], start[g + 1]). In a
