@@ -301,6 +301,18 @@ bool ContactStage::detect(std::span<const double> positions) {
       c.state = !touching                      ? ContactState::open
                 : c.friction > 0.0 || c.bonded ? ContactState::locked
                                                : ContactState::sliding;
+      // With inertia, a vertex that touches after the first step (it slid onto a face, or its
+      // contact opened in the last step) starts sliding with no friction load: its first
+      // solve then gives the slip that Coulomb's law is checked against. Started locked, its
+      // spring ks would stop a sliding block dead in that solve, and the contacts around it,
+      // seeing the block arrested, would read that as friction holding them and lock too:
+      // the DDA update v1 = 2 du / dt - v0 turned such an arrest into a bounce
+      // (docs/method-choices.md, "Friction with inertia").
+      if (touching && started_ && !c.bonded && parameters_.sliding_stiffness == 0.0) {
+        c.state = ContactState::sliding;
+        c.friction_force = 0.0;
+        c.slip_sign = 0.0;
+      }
     }
     c.slide_stiffness = parameters_.sliding_stiffness;
     c.anchor_start = c.shear_spring;
@@ -492,11 +504,30 @@ ContactStage::ShearUpdate ContactStage::update_shear_with_inertia(Contact& c, do
   out.assumed = before == ContactState::locked    ? ks * (c.shear_spring + slip)
                 : before == ContactState::sliding ? -c.friction_force
                                                   : 0.0;
+  if (before == ContactState::open) {
+    // It closed in this solve, which did not resist its overlap: the normal force that overlap
+    // stands for is no force the contact carried (deep, where the other contacts opened), and
+    // friction from it, as a load in the next solve, threw the sliding block of
+    // data/verification/frictional_incline.toml about at its release (2e4 to 5e4 N on single
+    // contacts of a 7.5 kN block). It takes part in the next solve with its normal spring and
+    // no friction; Coulomb's law applies from the normal force that solve gives it.
+    c.state = ContactState::sliding;
+    c.slip_sign = 0.0;
+    c.friction_force = 0.0;
+    return out;
+  }
   const double normal_force = friction_normal_force(c, gap);
   // Coulomb's law as the return mapping of a rigid-plastic spring: the shear past the
   // anchor either fits within the capacity (locked) or the anchor follows the contact so
   // that the spring carries exactly the capacity (sliding, with no shear stiffness and the
   // friction as a load in the next solve).
+  // The trial of a sliding contact starts from its anchor at the start of the step (or where
+  // it closed in this step), as a return mapping over the step does, not from where the last
+  // iterate left it: the friction opposes the step's slip. Taken from the last iterate, the
+  // direction was that of the correction between two iterates, often opposite to the motion:
+  // friction then pushed the block along, or a correction of a few nanometres read as
+  // "slid back past its anchor" and locked a block moving at 1 m/s.
+  if (before == ContactState::sliding) c.shear_spring = c.anchor_start;
   const double elastic = c.shear_spring + slip;
   const double capacity = shear_capacity(c, normal_force, ks * elastic, tolerance, out.bond_broke);
   if (capacity > 0.0 && ks * std::abs(elastic) <= capacity) {
