@@ -246,6 +246,8 @@ TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
       {"msh", "element_names_undefined_node.msh"},
       {"msh", "node_line_split.msh"},
       {"msh", "physical_name_dimension_4.msh"},
+      {"msh", "element_parent_tag.msh"},
+      {"msh", "element_partition_tags.msh"},
   };
   for (const auto& [kind, file] : cases) {
     test::TempDir tmp;

@@ -502,7 +502,8 @@ TEST(BadInput, MshFilesFoundByFuzzingAreRefusedBeforeGmshReadsThem) {
   // Gmsh's .geo parser over mesh data. A text file whose header says binary made Gmsh's reader
   // allocate 2 GB from the bytes it took for counts. A $Nodes count one short of the nodes
   // listed crashed rockdd (SIGSEGV in Gmsh) on the element naming the node left out, and so
-  // did a physical name of dimension 4 (Gmsh indexes its tables by it unchecked).
+  // did a physical name of dimension 4 (Gmsh indexes its tables by it unchecked), and
+  // elements of format 2 with partition or parent tags (assertion, invalid free, SIGSEGV).
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"geo_script.msh", "expected a Gmsh .msh file whose first line is $MeshFormat, got \"//"},
       {"misspelled_header.msh",
@@ -512,6 +513,9 @@ TEST(BadInput, MshFilesFoundByFuzzingAreRefusedBeforeGmshReadsThem) {
        "expected elements whose nodes are among the 2 of $Nodes, got element 1 with node 3"},
       {"node_line_split.msh", "among the 9 of $Nodes, got element 7 with node 9"},
       {"physical_name_dimension_4.msh", "got entry 4 of $PhysicalNames"},
+      // Partition and parent tags of format 2: an assertion and an invalid free in Gmsh.
+      {"element_parent_tag.msh", "got element 39 with 6 tags"},
+      {"element_partition_tags.msh", "got element 39 with 4 tags"},
   };
   for (const auto& [name, phrase] : cases) {
     const InputError error = build_error(file(MeshSpec::Kind::msh, name));

@@ -54,8 +54,19 @@ void check_msh2_node_references(const std::filesystem::path& file, const MeshSou
       for (int e = 0; e < count; ++e) {
         int tag = 0, type = 0, tags = 0, value = 0;
         if (std::fscanf(fp.get(), "%d %d %d", &tag, &type, &tags) != 3 || tags < 0) return;
-        for (int t = 0; t < tags; ++t)  // physical and entity tags
+        // Physical and entity tags, then (format 2.2) a partition count, the partitions and
+        // further tags. Gmsh 4.8 crashes on partition lists and extra tags of format 2 (an
+        // assertion, an invalid free, a segmentation fault: found by fuzzing), and rockdd
+        // reads no partitioned mesh: at most a third tag, a partition count of 0.
+        for (int t = 0; t < tags; ++t) {
           if (std::fscanf(fp.get(), "%d", &value) != 1) return;
+          if (t == 3 || (t == 2 && value != 0))
+            source.fail(
+                "expected at most 3 tags per element (physical, elementary, and a "
+                "partition count of 0: rockdd reads no partitioned mesh), got element " +
+                std::to_string(tag) + " with " + std::to_string(tags) + " tags (in " +
+                file.string() + ")");
+        }
         const int corners = nodes_of_type(type);
         if (corners == 0) return;  // Gmsh reports the type
         for (int c = 0; c < corners; ++c) {
