@@ -248,6 +248,8 @@ TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
       {"msh", "physical_name_dimension_4.msh"},
       {"msh", "element_parent_tag.msh"},
       {"msh", "element_partition_tags.msh"},
+      {"msh", "two_node_sections.msh"},
+      {"msh", "element_count_unreadable.msh"},
   };
   for (const auto& [kind, file] : cases) {
     test::TempDir tmp;

@@ -516,6 +516,10 @@ TEST(BadInput, MshFilesFoundByFuzzingAreRefusedBeforeGmshReadsThem) {
       // Partition and parent tags of format 2: an assertion and an invalid free in Gmsh.
       {"element_parent_tag.msh", "got element 39 with 6 tags"},
       {"element_partition_tags.msh", "got element 39 with 4 tags"},
+      // A second $Nodes section: SIGSEGV in Gmsh.
+      {"two_node_sections.msh", "expected one $Nodes and one $Elements section, got 2 and 1"},
+      // An element count Gmsh's sscanf cannot read: an assertion in Gmsh.
+      {"element_count_unreadable.msh", "expected an element count after $Elements"},
   };
   for (const auto& [name, phrase] : cases) {
     const InputError error = build_error(file(MeshSpec::Kind::msh, name));

@@ -37,29 +37,62 @@ void check_msh2_node_references(const std::filesystem::path& file, const MeshSou
       !(version >= 2.0 && version < 3.0) || file_type != 0)
     return;
 
+  // Sections first, by the prefixes Gmsh's format-2 reader matches: a second $Nodes section
+  // made Gmsh 4.8 crash (SIGSEGV in GModel::_associateEntityWithMeshVertices, found by
+  // fuzzing), and sections of format 1 ($NOD, $ELM) would pass by the checks below.
+  const long body = std::ftell(fp.get());
+  int node_sections = 0, element_sections = 0;
+  while (std::fgets(line, sizeof line, fp.get())) {
+    if (line[0] != '$') continue;
+    node_sections += std::strncmp(line, "$Nodes", 6) == 0;
+    element_sections += std::strncmp(line, "$Elements", 9) == 0;
+    for (const char* old : {"$NOD", "$NOE", "$ELM", "$ParametricNodes"})
+      if (std::strncmp(line, old, std::strlen(old)) == 0)
+        source.fail("expected the $Nodes and $Elements sections of format 2.2, got a " +
+                    std::string(old) + " section (in " + file.string() + ")");
+  }
+  if (node_sections > 1 || element_sections > 1)
+    source.fail("expected one $Nodes and one $Elements section, got " +
+                std::to_string(node_sections) + " and " + std::to_string(element_sections) +
+                " (in " + file.string() + ")");
+  if (body < 0 || std::fseek(fp.get(), body, SEEK_SET) != 0) return;
+
+  // Past the header, whatever the reader cannot take as Gmsh would is refused rather than
+  // left to Gmsh: a count Gmsh's sscanf fails on left its own count unset, and the elements
+  // read after it reached an assertion in Gmsh 4.8 (found by fuzzing).
+  auto unreadable = [&](const std::string& what) {
+    source.fail("expected " + what + " (in " + file.string() + ")");
+  };
   std::unordered_set<int> nodes;
   while (std::fgets(line, sizeof line, fp.get())) {
     if (std::strncmp(line, "$Nodes", 6) == 0) {
       int count = 0;
-      if (std::fscanf(fp.get(), "%d", &count) != 1) return;
+      if (std::fscanf(fp.get(), "%d", &count) != 1 || count < 0)
+        unreadable("a node count after $Nodes");
       for (int n = 0; n < count; ++n) {
         int tag = 0;
         double x, y, z;
-        if (std::fscanf(fp.get(), "%d %lf %lf %lf", &tag, &x, &y, &z) != 4) return;
+        if (std::fscanf(fp.get(), "%d %lf %lf %lf", &tag, &x, &y, &z) != 4)
+          unreadable("node " + std::to_string(n + 1) + " of " + std::to_string(count) +
+                     " as a tag and three coordinates");
         nodes.insert(tag);
       }
     } else if (std::strncmp(line, "$Elements", 9) == 0) {
       int count = 0;
-      if (std::fscanf(fp.get(), "%d", &count) != 1) return;
+      if (std::fscanf(fp.get(), "%d", &count) != 1 || count < 0)
+        unreadable("an element count after $Elements");
       for (int e = 0; e < count; ++e) {
         int tag = 0, type = 0, tags = 0, value = 0;
-        if (std::fscanf(fp.get(), "%d %d %d", &tag, &type, &tags) != 3 || tags < 0) return;
+        if (std::fscanf(fp.get(), "%d %d %d", &tag, &type, &tags) != 3 || tags < 0)
+          unreadable("element " + std::to_string(e + 1) + " of " + std::to_string(count) +
+                     " to start with its tag, type and number of tags");
         // Physical and entity tags, then (format 2.2) a partition count, the partitions and
         // further tags. Gmsh 4.8 crashes on partition lists and extra tags of format 2 (an
         // assertion, an invalid free, a segmentation fault: found by fuzzing), and rockdd
         // reads no partitioned mesh: at most a third tag, a partition count of 0.
         for (int t = 0; t < tags; ++t) {
-          if (std::fscanf(fp.get(), "%d", &value) != 1) return;
+          if (std::fscanf(fp.get(), "%d", &value) != 1)
+            unreadable("the " + std::to_string(tags) + " tags of element " + std::to_string(tag));
           if (t == 3 || (t == 2 && value != 0))
             source.fail(
                 "expected at most 3 tags per element (physical, elementary, and a "
@@ -68,9 +101,13 @@ void check_msh2_node_references(const std::filesystem::path& file, const MeshSou
                 file.string() + ")");
         }
         const int corners = nodes_of_type(type);
-        if (corners == 0) return;  // Gmsh reports the type
+        if (corners == 0)
+          unreadable("element types 1 to 31 of format 2, got type " + std::to_string(type) +
+                     " for element " + std::to_string(tag));
         for (int c = 0; c < corners; ++c) {
-          if (std::fscanf(fp.get(), "%d", &value) != 1) return;
+          if (std::fscanf(fp.get(), "%d", &value) != 1)
+            unreadable("the " + std::to_string(corners) + " nodes of element " +
+                       std::to_string(tag));
           if (nodes.count(value)) continue;
           source.fail("expected elements whose nodes are among the " +
                       std::to_string(nodes.size()) + " of $Nodes, got element " +
