@@ -341,14 +341,12 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
       break;
     }
     ++stats_.damage_iterations;
+    changed_elements(model_, damage_before_, state_.changed_elements);
     factor_current = change.grown > 0 && fold_modulus_change(inertia.mass_coefficient);
     prepare_system(inertia.mass_coefficient);  // nothing left to do once folded
     // The next solve's internal force at u_trial under the new moduli: bitwise what a full
     // recomputation gives (the same kernel per element, summed in the same order).
     ScopedTimer timer(timers_.assembly);
-    state_.changed_elements.clear();
-    for (std::int32_t e = 0; e < model_.num_elements(); ++e)
-      if (model_.damage[e] != damage_before_[e]) state_.changed_elements.push_back(e);
     refresh_element_forces(model_, state_.u_trial, state_.changed_elements,
                            state_.trial_element_force, corotational_);
     sum_element_forces(model_, coloring_, state_.trial_element_force, state_.f_int);
@@ -497,7 +495,8 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
 bool Simulation::fold_modulus_change(double mass_coefficient) {
   if (!scene_.solver.factor_updates || bc_.num_equations == 0) return false;
   ScopedTimer timer(timers_.factorization);
-  modulus_change_terms(model_, bc_.equation, damage_before_, moduli_added_, moduli_removed_);
+  modulus_change_terms(model_, bc_.equation, state_.changed_elements, damage_before_, moduli_added_,
+                       moduli_removed_);
   const std::int64_t columns = moduli_added_.num_columns() + moduli_removed_.num_columns();
   if (!solver_.update_expected_faster(columns)) return false;
   try {
@@ -506,7 +505,8 @@ bool Simulation::fold_modulus_change(double mass_coefficient) {
   } catch (const RunFailure&) {
     return false;  // the factor is unusable: the caller reassembles and refactorizes
   }
-  add_modulus_change(model_, layout_, damage_before_, contact_ ? base_values_ : values_);
+  add_modulus_change(model_, layout_, state_.changed_elements, damage_before_,
+                     contact_ ? base_values_ : values_);
   factorized_mass_coefficient_ = mass_coefficient;  // the values are current again
   values_incremental_ = true;
   ++stats_.folded_damage_passes;
@@ -529,32 +529,23 @@ void Simulation::solve_system() {
   refine_rhs_.assign(x, x + n);
   refine_residual_.resize(n);
   solver_.solve(x, x);
+  // The normwise backward error |b - A x| / (max|A| |x| + |b|) in the max norm; an SPD
+  // matrix's largest entry is on its diagonal.
   const SparsityPattern& a = layout_.pattern;
+  double largest_a = 0.0, largest_b = 0.0;
+  for (std::int32_t j = 0; j < a.n; ++j)
+    largest_a =
+        std::max(largest_a, std::abs(values_[static_cast<std::size_t>(a.col_ptr[j + 1] - 1)]));
+  for (const double b : refine_rhs_) largest_b = std::max(largest_b, std::abs(b));
   double backward_error = 0.0;
   for (int refinement = 0;; ++refinement) {
-    // r = b - A x over the upper triangle, against max|A| max|x| + max|b| (an SPD matrix's
-    // largest entry is on its diagonal): the normwise backward error.
-    std::copy(refine_rhs_.begin(), refine_rhs_.end(), refine_residual_.begin());
-    double scale = 0.0, residual = 0.0;
-    for (std::int32_t j = 0; j < a.n; ++j) {
-      for (std::int32_t p = a.col_ptr[j]; p < a.col_ptr[j + 1]; ++p) {
-        const std::int32_t i = a.row_idx[p];
-        const double v = values_[static_cast<std::size_t>(p)];
-        refine_residual_[i] -= v * x[j];
-        if (i != j) refine_residual_[j] -= v * x[i];
-      }
-    }
+    symmetric_residual(a, values_, {x, n}, refine_rhs_, refine_residual_);
+    double residual = 0.0, largest_x = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
       residual = std::max(residual, std::abs(refine_residual_[i]));
-      scale = std::max(scale, std::abs(refine_rhs_[i]));
+      largest_x = std::max(largest_x, std::abs(x[i]));
     }
-    double largest_x = 0.0, largest_a = 0.0;
-    for (std::size_t i = 0; i < n; ++i) largest_x = std::max(largest_x, std::abs(x[i]));
-    for (std::int32_t j = 0; j < a.n; ++j)
-      largest_a = std::max(
-          largest_a,
-          std::abs(values_[static_cast<std::size_t>(a.col_ptr[j + 1] - 1)]));  // the diagonal
-    scale += largest_a * largest_x;
+    const double scale = largest_a * largest_x + largest_b;
     backward_error = scale > 0.0 ? residual / scale : 0.0;
     if (backward_error <= kRefined || refinement == kMaxRefinements) break;
     solver_.solve(refine_residual_.data(), refine_residual_.data());

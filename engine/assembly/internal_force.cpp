@@ -91,8 +91,15 @@ void refresh_element_forces(const Model& model, std::span<const double> u,
 void sum_element_forces(const Model& model, const ElementColoring& coloring,
                         std::span<const double> element_force, std::span<double> f_int) {
   std::fill(f_int.begin(), f_int.end(), 0.0);
-  for (const std::int32_t e : coloring.element)
-    add_element_force(model, e, &element_force[6 * static_cast<std::size_t>(e)], f_int);
+  for (std::int32_t c = 0; c < coloring.num_colors(); ++c)
+    tbb::parallel_for(
+        tbb::blocked_range<std::int32_t>(coloring.offset[c], coloring.offset[c + 1], 2048),
+        [&](auto range) {
+          for (std::int32_t i = range.begin(); i != range.end(); ++i) {
+            const std::int32_t e = coloring.element[i];
+            add_element_force(model, e, &element_force[6 * static_cast<std::size_t>(e)], f_int);
+          }
+        });
 }
 
 double largest_rotation_change(const Model& model, std::span<const double> u) {

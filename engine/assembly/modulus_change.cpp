@@ -8,19 +8,25 @@
 
 namespace rockdd {
 
-std::int32_t modulus_change_terms(const Model& model, std::span<const std::int32_t> equation,
-                                  std::span<const double> damage_before, LowRankTerms& added,
-                                  LowRankTerms& removed) {
+void changed_elements(const Model& model, std::span<const double> damage_before,
+                      std::vector<std::int32_t>& changed) {
+  changed.clear();
+  for (std::int32_t e = 0; e < model.num_elements(); ++e)
+    if (model.damage[e] != damage_before[e]) changed.push_back(e);
+}
+
+void modulus_change_terms(const Model& model, std::span<const std::int32_t> equation,
+                          std::span<const std::int32_t> changed,
+                          std::span<const double> damage_before, LowRankTerms& added,
+                          LowRankTerms& removed) {
   added.clear();
   removed.clear();
   const kernels::PlaneKind plane = plane_kind(model.plane);
-  std::int32_t changed = 0;
-  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+  for (const std::int32_t e : changed) {
     // The same moduli assemble_stiffness uses, so the terms are its difference exactly.
     const double before = damaged_young(model.young[e], damage_before[e]);
     const double after = damaged_young(model.young[e], model.damage[e]);
-    if (after == before) continue;
-    ++changed;
+    if (after == before) continue;  // both at the floor
     double xy[6], d[9], w[18];
     gather_element(model.conn, e, model.X, xy);
     kernels::elasticity_matrix(std::abs(after - before), model.poisson[e], plane, d);
@@ -41,13 +47,13 @@ std::int32_t modulus_change_terms(const Model& model, std::span<const std::int32
       terms.add_column(rows, column);
     }
   }
-  return changed;
 }
 
 void add_modulus_change(const Model& model, const StiffnessLayout& layout,
+                        std::span<const std::int32_t> changed,
                         std::span<const double> damage_before, std::span<double> values) {
   const kernels::PlaneKind plane = plane_kind(model.plane);
-  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+  for (const std::int32_t e : changed) {
     const double before = damaged_young(model.young[e], damage_before[e]);
     const double after = damaged_young(model.young[e], model.damage[e]);
     if (after == before) continue;

@@ -1,6 +1,8 @@
 #pragma once
 // Symmetric sparsity pattern in compressed-column form, upper triangle only (row <= col).
+#include <algorithm>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace rockdd {
@@ -13,5 +15,19 @@ struct SparsityPattern {
   std::vector<std::int32_t> row_idx;  // col_ptr[n]
   std::int64_t nnz() const { return col_ptr.empty() ? 0 : col_ptr.back(); }
 };
+
+/// r = b - A x for the symmetric A held as `pattern`'s upper triangle with `values`.
+inline void symmetric_residual(const SparsityPattern& pattern, std::span<const double> values,
+                               std::span<const double> x, std::span<const double> b,
+                               std::span<double> r) {
+  std::copy(b.begin(), b.end(), r.begin());
+  for (std::int32_t j = 0; j < pattern.n; ++j)
+    for (std::int32_t p = pattern.col_ptr[j]; p < pattern.col_ptr[j + 1]; ++p) {
+      const std::int32_t i = pattern.row_idx[p];
+      const double v = values[static_cast<std::size_t>(p)];
+      r[i] -= v * x[j];
+      if (i != j) r[j] -= v * x[i];
+    }
+}
 
 }  // namespace rockdd
