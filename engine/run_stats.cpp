@@ -13,8 +13,7 @@ void RunStats::write(nlohmann::json& s) const {
   s["damage_iteration_limit_hits"] = damage_limit_hits;
   s["detached_elements"] = detached_elements;
   s["folded_damage_passes"] = folded_damage_passes;
-  s["refinement_steps"] = refinement_steps;
-  s["refinement_refactorizations"] = refinement_refactorizations;
+  s["untrusted_updated_solves"] = untrusted_updated_solves;
 }
 
 }  // namespace rockdd

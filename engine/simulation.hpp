@@ -118,8 +118,8 @@ class Simulation {
   /// low-rank updates, and into the assembled values, when the cost model expects that to be
   /// cheaper than reassembling and refactorizing (false: nothing done, the caller does that).
   bool fold_modulus_change(double mass_coefficient);
-  /// x = K^{-1} rhs in state_.rhs, with iterative refinement against the assembled values
-  /// while the factor carries updates (refactorizing if refinement cannot recover accuracy).
+  /// x = K^{-1} rhs in state_.rhs; while the factor carries updates, the solution is checked
+  /// against the assembled values and the matrix refactorized if the check fails.
   void solve_system();
   /// After a committed step: damaged elements become blocks, and what hangs on the nodes
   /// is rebuilt for the new topology.
@@ -164,10 +164,10 @@ class Simulation {
   LowRankTerms springs_added_, springs_removed_;  // contact springs switched in an iteration
   LowRankTerms moduli_added_, moduli_removed_;    // element stiffness changed by a damage pass
   bool values_incremental_ = false;  // the assembled values carry folded modulus changes
-  std::vector<double> refine_rhs_, refine_residual_;  // iterative refinement's work arrays
-  std::vector<std::uint8_t> detached_;            // per element
-  std::vector<double> committed_damage_;          // w at the last committed step: a redone attempt
-                                                  // starts from it, not from its failed attempt's
+  std::vector<double> check_rhs_, check_residual_;  // the updated-factor check's work arrays
+  std::vector<std::uint8_t> detached_;              // per element
+  std::vector<double> committed_damage_;  // w at the last committed step: a redone attempt
+                                          // starts from it, not from its failed attempt's
   /// Where damage first appeared: the elements of the first damage pass that found any.
   struct FirstDamage {
     long step = 0;

@@ -1,7 +1,7 @@
 // Factor updates in the fracture loop (docs/benchmarks.md, "Damage passes folded into the
 // factor"): a damage pass that changes few element moduli, or an open-close iteration that
 // switches few springs, modifies the Cholesky factor by low-rank updates (cholmod_updown),
-// and the solve is refined against the assembled matrix while the factor carries updates.
+// and each solve with an updated factor is checked against the assembled matrix.
 // It changes round-off only. Each test runs one scene twice, [solver] factor_updates = true
 // (the default) and false (refactorize every time), and asks for the same physical run: the
 // same numbers of steps, open-close iterations, damage passes, damaged elements and blocks,
