@@ -10,6 +10,7 @@ struct EnergyAccount {
   double damage = 0.0;         // released by modulus drops at fixed strain (eq. 3 and 7)
   double snap_back = 0.0;      // released when the rock re-settles after damage, see below
   double anchor = 0.0;         // held by the fragment restraint when steps ended
+  double integrator = 0.0;     // damped by the time integrator (DDA's scheme; dynamic only)
   // Of snap_back, what re-solves gained instead of released (their negative terms, as a
   // positive number): energy the scheme created, which a sound re-solve never does.
   double created = 0.0;

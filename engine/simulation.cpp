@@ -554,8 +554,9 @@ void Simulation::solve_system() {
 
 void Simulation::commit_step(double dt) {
   const std::size_t num_dofs = model_.X.size();
-  update_velocity(scene_.analysis, scene_.time.integrator, dt, state_.du, bc_.prescribed,
-                  bc_.velocity, model_.v, state_.acceleration);
+  energy_.integrator +=
+      update_velocity(scene_.analysis, scene_.time.integrator, dt, state_.du, bc_.prescribed,
+                      bc_.velocity, model_.node_mass, model_.v, state_.acceleration);
   if (corotational_) {
     // Only blocks that nothing holds turn exactly; the others stay where the solve balanced
     // them against their constraints and contacts.
@@ -744,6 +745,7 @@ EnergyBalance Simulation::energy() const {
   e.external_work = energy_.external_work;
   e.dissipated = energy_.damage + (contact_ ? contact_->friction_dissipation() : 0.0);
   e.snap_back = energy_.snap_back;
+  e.integrator = energy_.integrator;
   return e;
 }
 
@@ -953,8 +955,9 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
                    {"snap_back", energy_.snap_back},
                    {"created_by_resolves", energy_.created},
                    {"anchor_work", energy_.anchor},
+                   {"integrator_dissipation", energy_.integrator},
                    {"unaccounted", e.external_work - e.kinetic - e.strain - e.dissipated -
-                                       e.snap_back - energy_.anchor}};
+                                       e.snap_back - energy_.anchor - e.integrator}};
   }
   s["damaged_elements"] =
       std::count_if(model_.damage.begin(), model_.damage.end(), [](double w) { return w > 0; });

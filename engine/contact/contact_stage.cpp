@@ -241,6 +241,7 @@ void ContactStage::carry_contacts_from(const ContactStage& old) {
     return x.vertex != y.vertex ? x.vertex < y.vertex : x.edge < y.edge;
   });
   contacts_ = committed_;
+  started_ = old.started_;
   shear_swings_settled_ = old.shear_swings_settled_;
   friction_dissipation_ = old.friction_dissipation_;
   spring_energy_ = old.spring_energy_;
@@ -320,16 +321,27 @@ bool ContactStage::detect(std::span<const double> positions) {
     // The step starts from the force the contact ended the last step with. Between two steps
     // the gap is measured anew, exactly, where the last solve used its linearisation; and a
     // vertex may be found already overlapping, having slid unseen off a split corner or onto
-    // another edge. The overlap that no solve resisted carries no force: taken as the
-    // contact's zero; as the faces part, the next step's end_gap shows less of it, so it heals.
-    // Otherwise that overlap would push the faces apart with a force that nothing did work for
-    // (penalty springs are 20 E t: a micrometre is meganewtons).
+    // another edge. The overlap that no solve resisted carries no force: it is the contact's
+    // zero, kept from step to step (open or closed) while the faces still overlap that much,
+    // so it heals as they part. Otherwise it would push the faces apart with a force that
+    // nothing did work for (penalty springs are 20 E t: a micrometre is meganewtons).
     const double resisted = before != nullptr && before->state != ContactState::open
                                 ? std::min(before->end_gap, 0.0)
                                 : 0.0;
-    const double overlap = c.state == ContactState::open || !parameters_.forgive_unresisted_overlap
-                               ? 0.0
-                               : std::max(resisted - c.gap_start, 0.0);
+    // With inertia the push-back of a new overlap is part of the momentum balance: every
+    // pair that can close within a step is a candidate at its start (the step reach sees to
+    // that), and its contact resists the approach. A pair the last step did not have at all
+    // but finds overlapping is one that a change of topology made: a detachment that split a
+    // block (a vertex and an edge of what was one block overlap through the broken element
+    // that stood between them), or copies of a split node leaving the corner they shared. No
+    // solve resisted that overlap and no work made it, so with inertia too it is forgiven;
+    // in the first step the scene's own overlaps still push.
+    const bool forgive = parameters_.forgive_unresisted_overlap || (before == nullptr && started_);
+    double overlap =
+        before != nullptr ? std::min(before->unresisted_overlap, std::max(-c.gap_start, 0.0)) : 0.0;
+    if (c.state != ContactState::open && forgive)
+      overlap = std::max(overlap, resisted - c.gap_start);
+    c.unresisted_overlap = overlap;
     c.gap_offset += overlap;
     c.gap_start += overlap;
     c.start_normal_force = c.state != ContactState::open && c.gap_start < 0.0

@@ -47,12 +47,13 @@ struct Contact {
   // and slip(x) = slip_offset + t.x over the dofs (p, a, b); see kernels/contact_geometry.
   double g[6] = {}, t[6] = {};
   double gap_offset = 0.0, slip_offset = 0.0;
-  double gap_start = 0.0;        // the gap at the start of the step
-  double slide_slip = 0.0;       // step slip where friction_force was set (without inertia)
-  double slide_stiffness = 0.0;  // its sliding spring (N/m), softened while it slides freely
-  double last_excess = 0.0;      // its shear force past the capacity, last iteration (N)
-  double anchor_start = 0.0;     // shear_spring at the step start or when it closed (m)
-  double end_gap = 0.0;          // the gap its force came from at the end of the last step (m)
+  double gap_start = 0.0;           // the gap at the start of the step
+  double slide_slip = 0.0;          // step slip where friction_force was set (without inertia)
+  double slide_stiffness = 0.0;     // its sliding spring (N/m), softened while it slides freely
+  double last_excess = 0.0;         // its shear force past the capacity, last iteration (N)
+  double anchor_start = 0.0;        // shear_spring at the step start or when it closed (m)
+  double end_gap = 0.0;             // the gap its force came from at the end of the last step (m)
+  double unresisted_overlap = 0.0;  // its zero: an overlap no solve resisted (m)
 };
 
 /// Joint parameters that contacts use, derived from the scene.

@@ -41,7 +41,8 @@ RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
   auto& out = history_->stream();
   out << "step,time,dt";
   for (const auto& c : columns_) out << ',' << c;
-  out << ",energy.kinetic,energy.strain,energy.external_work,energy.dissipated,energy.snap_back\n";
+  out << ",energy.kinetic,energy.strain,energy.external_work,energy.dissipated,energy.snap_back,"
+         "energy.integrator\n";
 }
 
 RunOutputs::~RunOutputs() = default;
@@ -55,8 +56,8 @@ void RunOutputs::history_row(long step, double time, double dt,
     double& peak = peaks_[columns_[i]];
     peak = std::max(peak, std::abs(probe_values[i]));
   }
-  for (const double e :
-       {energy.kinetic, energy.strain, energy.external_work, energy.dissipated, energy.snap_back})
+  for (const double e : {energy.kinetic, energy.strain, energy.external_work, energy.dissipated,
+                         energy.snap_back, energy.integrator})
     out << ',' << format_number(e);
   out << '\n';
 }

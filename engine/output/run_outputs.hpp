@@ -16,10 +16,11 @@
 
 namespace rockdd {
 
-/// Energy totals over the thickness (J), the last four history columns.
+/// Energy totals over the thickness (J), the last history columns.
 struct EnergyBalance {
   double kinetic = 0, strain = 0, external_work = 0, dissipated = 0;
-  double snap_back = 0;  // released by re-settling after damage, without inertia (J)
+  double snap_back = 0;   // released by re-settling after damage, without inertia (J)
+  double integrator = 0;  // damped by the time integrator, with inertia (J)
 };
 
 /// Writes the run's files; history.csv appears only through finish(): a run that dies

@@ -16,10 +16,11 @@ InertiaTerms inertia_terms(Analysis analysis, Integrator integrator, double dt) 
   return terms;
 }
 
-void update_velocity(Analysis analysis, Integrator integrator, double dt,
-                     std::span<const double> du, std::span<const std::uint8_t> prescribed,
-                     std::span<const double> imposed_velocity, std::span<double> v,
-                     std::span<double> a) {
+double update_velocity(Analysis analysis, Integrator integrator, double dt,
+                       std::span<const double> du, std::span<const std::uint8_t> prescribed,
+                       std::span<const double> imposed_velocity, std::span<const double> node_mass,
+                       std::span<double> v, std::span<double> a) {
+  double damped = 0.0;  // serially in dof order: the total must not depend on threads
   for (std::size_t d = 0; d < du.size(); ++d) {
     if (prescribed[d]) {
       v[d] = imposed_velocity[d];
@@ -35,7 +36,8 @@ void update_velocity(Analysis analysis, Integrator integrator, double dt,
         v[d] = du[d] / dt;
         a[d] = 0.0;
         break;
-      case Analysis::dynamic:
+      case Analysis::dynamic: {
+        const double v_old = v[d], a_old = a[d];
         if (integrator == Integrator::newmark) {
           const double a_new = 4.0 * du[d] / (dt * dt) - 4.0 * v[d] / dt - a[d];
           v[d] += 0.5 * dt * (a[d] + a_new);
@@ -45,9 +47,13 @@ void update_velocity(Analysis analysis, Integrator integrator, double dt,
           a[d] = (v_new - v[d]) / dt;
           v[d] = v_new;
         }
+        damped +=
+            node_mass[d / 2] * (0.5 * (a_old + a[d]) * du[d] - 0.5 * (v[d] * v[d] - v_old * v_old));
         break;
+      }
     }
   }
+  return damped;
 }
 
 }  // namespace rockdd

@@ -24,10 +24,13 @@ struct InertiaTerms {
 InertiaTerms inertia_terms(Analysis analysis, Integrator integrator, double dt);
 
 /// Velocity (and acceleration) of free dofs after a step with increment du.
-/// Prescribed dofs take their imposed velocity and zero acceleration.
-void update_velocity(Analysis analysis, Integrator integrator, double dt,
-                     std::span<const double> du, std::span<const std::uint8_t> prescribed,
-                     std::span<const double> imposed_velocity, std::span<double> v,
-                     std::span<double> a);
+/// Prescribed dofs take their imposed velocity and zero acceleration. Returns, in a dynamic
+/// analysis, the energy the scheme damped in the step: the net force's trapezoidal work over
+/// du, sum m (a_n + a_{n+1}) du / 2 over free dofs, less the kinetic energy it gained. Zero
+/// for Newmark's average acceleration (to round-off); m (a_n - a_{n+1}) du / 2 for DDA's.
+double update_velocity(Analysis analysis, Integrator integrator, double dt,
+                       std::span<const double> du, std::span<const std::uint8_t> prescribed,
+                       std::span<const double> imposed_velocity, std::span<const double> node_mass,
+                       std::span<double> v, std::span<double> a);
 
 }  // namespace rockdd
