@@ -124,7 +124,7 @@ void BM_EvaluateDamage(benchmark::State& state) {
   p.poisson = 0.25;
   p.ft0 = 2e6;
   p.fc0 = k::compressive_strength(8e6, 0.5);
-  p.phi = 0.5;
+  p.mohr_coulomb = k::mohr_coulomb_factor(0.5);
   std::vector<double> w(kElements, 0.0);
   for (auto _ : state) {
     for (int e = 0; e < kElements; ++e) {

@@ -20,6 +20,25 @@ double element_rotation(const double xy0[6], const double xy[6]) {
   return std::atan2(f[1][0] - f[0][1], f[0][0] + f[1][1]);
 }
 
+Rotation element_rotation_factor(const double xy0[6], const double xy[6]) {
+  // 2A F = sum_k x_k (b_k, c_k): the factor 2A scales both components alike, so it drops out
+  // of the normalisation but for its sign (an inverted reference would turn R by pi).
+  double b[3], c[3];
+  const double two_area = 2.0 * cst_gradients(xy0, b, c);
+  double f11 = 0.0, f12 = 0.0, f21 = 0.0, f22 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    f11 += xy[2 * k] * b[k];
+    f12 += xy[2 * k] * c[k];
+    f21 += xy[2 * k + 1] * b[k];
+    f22 += xy[2 * k + 1] * c[k];
+  }
+  const double sign = two_area < 0.0 ? -1.0 : 1.0;
+  const double p = sign * (f11 + f22), q = sign * (f21 - f12);
+  const double r = std::sqrt(p * p + q * q);
+  if (!(r > 0.0)) return {};  // F = 0 or a pure reflection: atan2(0, 0) = 0 as well
+  return {p / r, q / r};
+}
+
 void corotated_displacement(const double xy0[6], const double xy[6], Rotation r, double u[6]) {
   const double cs = r.cs, sn = r.sn;
   const double xc = (xy[0] + xy[2] + xy[4]) / 3.0, yc = (xy[1] + xy[3] + xy[5]) / 3.0;

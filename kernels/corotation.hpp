@@ -15,11 +15,16 @@ struct Rotation {
   double cs = 1.0, sn = 0.0;
   Rotation() = default;
   explicit Rotation(double theta) : cs(std::cos(theta)), sn(std::sin(theta)) {}
+  Rotation(double c, double s) : cs(c), sn(s) {}
 };
 
 /// Rotation of the element from reference xy0 to current xy: the angle of the rotation
 /// factor R of the polar decomposition F = R U of its deformation gradient.
 double element_rotation(const double xy0[6], const double xy[6]);
+
+/// The same rotation as its (cos, sin), without trigonometry: the normalised
+/// (F11 + F22, F21 - F12). Equal to Rotation(element_rotation(xy0, xy)) up to round-off.
+Rotation element_rotation_factor(const double xy0[6], const double xy[6]);
 
 /// Displacement left once the rotation theta and the translation are taken out, in the
 /// reference frame: u_k = R^T (x_k - x_c) - (X_k - X_c), c the centroid.

@@ -62,18 +62,18 @@ void compressive_principal_stresses(const double sig[3], double poisson, PlaneKi
   if (c[1] > c[0]) std::swap(c[0], c[1]);
 }
 
-bool mohr_coulomb_onset(double c1, double c3, double fc0, double phi) {
+bool mohr_coulomb_onset(double c1, double c3, double fc0, double k) {
   // Written as c1 >= fc0 + k c3 (not c1 - k c3 >= fc0) so a caller that builds c1 from the
   // same expression sits exactly on the threshold.
-  return c1 >= fc0 + mohr_coulomb_factor(phi) * c3;
+  return c1 >= fc0 + k * c3;
 }
 
-double compressive_threshold_strain(const double c[3], double fc0, double phi, double young,
+double compressive_threshold_strain(const double c[3], double fc0, double k, double young,
                                     double poisson) {
   // The paper prints -mu (sigma1 + sigma2); Hooke's law along the major compressive axis at the
   // peak c1 = fc0 + k c3 needs the two other stresses, -nu (c2 + c3), and only this form
   // gives eps_c0 = fc0 / E0 in uniaxial compression, as f_cr = lambda E0 eps_c0 requires.
-  return (fc0 + mohr_coulomb_factor(phi) * c[2] - poisson * (c[1] + c[2])) / young;
+  return (fc0 + k * c[2] - poisson * (c[1] + c[2])) / young;
 }
 
 double major_compressive_strain(const double eps[3], double poisson, PlaneKind plane) {
@@ -121,7 +121,7 @@ double onset_ratio(const double eps[3], const double sig[3], const DamageParams&
   if (p.fc0 > 0.0) {
     double c[3];
     compressive_principal_stresses(se, p.poisson, plane, c);
-    ratio = std::max(ratio, (c[0] - mohr_coulomb_factor(p.phi) * c[2]) / p.fc0);
+    ratio = std::max(ratio, (c[0] - p.mohr_coulomb * c[2]) / p.fc0);
   }
   return ratio;
 }
@@ -149,8 +149,9 @@ DamageUpdate evaluate_damage(const double eps[3], const double sig[3], const Dam
 
   double c[3];
   compressive_principal_stresses(se, p.poisson, plane, c);
-  if (p.fc0 > 0.0 && mohr_coulomb_onset(c[0], c[2], p.fc0, p.phi)) {
-    const double eps_c0 = compressive_threshold_strain(c, p.fc0, p.phi, p.young, p.poisson);
+  if (p.fc0 > 0.0 && mohr_coulomb_onset(c[0], c[2], p.fc0, p.mohr_coulomb)) {
+    const double eps_c0 =
+        compressive_threshold_strain(c, p.fc0, p.mohr_coulomb, p.young, p.poisson);
     const double eps_c1 = major_compressive_strain(eps, p.poisson, plane);
     const double w = compressive_damage(std::max(eps_c1, eps_c0), eps_c0, p.lambda);
     return {std::max(w_old, w), DamageLaw::shear};

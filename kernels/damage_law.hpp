@@ -31,13 +31,13 @@ enum class DamageLaw { none, tension, shear };
 
 /// Undamaged properties and strengths of one element (after heterogeneity draws).
 struct DamageParams {
-  double young = 0;     // E0 (Pa), undamaged modulus
-  double poisson = 0;   // nu, unchanged by damage
-  double ft0 = 0;       // uniaxial tensile strength (Pa, > 0)
-  double fc0 = 0;       // uniaxial compressive strength (Pa, > 0); see compressive_strength()
-  double phi = 0;       // internal friction angle (rad, 0 <= phi < pi/2)
-  double lambda = 0.1;  // residual strength coefficient: f_r = lambda f_0 (0 < lambda <= 1)
-  double eta = 5.0;     // ultimate tensile strain coefficient: eps_tu = eta eps_t0 (eta > 1)
+  double young = 0;         // E0 (Pa), undamaged modulus
+  double poisson = 0;       // nu, unchanged by damage
+  double ft0 = 0;           // uniaxial tensile strength (Pa, > 0)
+  double fc0 = 0;           // uniaxial compressive strength (Pa, > 0); see compressive_strength()
+  double mohr_coulomb = 1;  // k = mohr_coulomb_factor(phi), phi the internal friction angle
+  double lambda = 0.1;      // residual strength coefficient: f_r = lambda f_0 (0 < lambda <= 1)
+  double eta = 5.0;         // ultimate tensile strain coefficient: eps_tu = eta eps_t0 (eta > 1)
   TensionOnset onset = TensionOnset::stress;
   double floor = kDefaultStiffnessFloor;  // stiffness floor, as a fraction of E0
 };
@@ -89,11 +89,11 @@ void compressive_principal_stresses(const double sig[3], double poisson, PlaneKi
                                     double c[3]);
 
 /// Mohr-Coulomb onset, paper eq. (6) with compression positive: c1 >= fc0 + k c3.
-bool mohr_coulomb_onset(double c1, double c3, double fc0, double phi);
+bool mohr_coulomb_onset(double c1, double c3, double fc0, double k);
 
 /// Compressive threshold strain, paper eq. (8) as Hooke's law at the Mohr-Coulomb peak
 /// c1 = fc0 + k c3: eps_c0 = (fc0 + k c3 - nu (c2 + c3)) / E0, c = compressive principals.
-double compressive_threshold_strain(const double c[3], double fc0, double phi, double young,
+double compressive_threshold_strain(const double c[3], double fc0, double k, double young,
                                     double poisson);
 
 /// Major compressive principal strain, positive in compression: -min(e2, eps_zz).

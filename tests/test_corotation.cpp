@@ -36,6 +36,31 @@ TEST(Corotation, RigidMotionLeavesNoDisplacementWhateverTheAngle) {
   }
 }
 
+TEST(Corotation, RotationFactorIsTheCosineAndSineOfTheAngle) {
+  // element_rotation_factor normalises (F11 + F22, F21 - F12) instead of taking atan2 and
+  // then sincos: the same (cos, sin) to 1e-15, for rotations all round the circle after a
+  // stretch U = [[1.01, 0.003], [0.003, 0.995]], and for an element listed clockwise
+  // (negative area: 2A scales F's components, so only its sign may be kept).
+  for (const double theta : {0.0, 0.3, 1.5, 2.5, 3.1, -1.0, -3.0}) {
+    const double c = std::cos(theta), s = std::sin(theta);
+    const double u[2][2] = {{1.01, 0.003}, {0.003, 0.995}};
+    const double f[2][2] = {{c * u[0][0] - s * u[1][0], c * u[0][1] - s * u[1][1]},
+                            {s * u[0][0] + c * u[1][0], s * u[0][1] + c * u[1][1]}};
+    const double shift[2] = {-1.0, 3.0};
+    double xy[6];
+    deform(f, shift, xy);
+    const Rotation r = element_rotation_factor(kXy0, xy);
+    EXPECT_NEAR(r.cs, c, 1e-15) << theta;
+    EXPECT_NEAR(r.sn, s, 1e-15) << theta;
+    const double xy0_clockwise[6] = {kXy0[0], kXy0[1], kXy0[4], kXy0[5], kXy0[2], kXy0[3]};
+    const double xy_clockwise[6] = {xy[0], xy[1], xy[4], xy[5], xy[2], xy[3]};
+    const Rotation turned = element_rotation_factor(xy0_clockwise, xy_clockwise);
+    const Rotation angle(element_rotation(xy0_clockwise, xy_clockwise));
+    EXPECT_NEAR(turned.cs, angle.cs, 1e-15) << theta;
+    EXPECT_NEAR(turned.sn, angle.sn, 1e-15) << theta;
+  }
+}
+
 TEST(Corotation, StretchAfterRotationIsMeasuredInTheElementFrame) {
   // F = R U with U = [[1.01, 0.003], [0.003, 0.995]]: the angle is that of R, and the strain
   // of the co-rotated displacement is exactly {U11 - 1, U22 - 1, 2 U12}.

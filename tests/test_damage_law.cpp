@@ -22,7 +22,7 @@ k::DamageParams params(TensionOnset onset = TensionOnset::stress, double nu = kN
   p.poisson = nu;
   p.ft0 = kFt;
   p.fc0 = kFc;
-  p.phi = kPhi;
+  p.mohr_coulomb = k::mohr_coulomb_factor(kPhi);
   p.lambda = kLambda;
   p.eta = kEta;
   p.onset = onset;
@@ -198,9 +198,9 @@ TEST(DamageLaw, MohrCoulombOnsetIsExactOnTheThreshold) {
     EXPECT_NEAR(kf, (1 + std::sin(phi)) / (1 - std::sin(phi)), 1e-15 * kf);
     for (double c3 : {0.0, 1e6, 5e6, -1e6}) {
       const double q = kFc + kf * c3;
-      EXPECT_TRUE(k::mohr_coulomb_onset(q, c3, kFc, phi));
-      EXPECT_FALSE(k::mohr_coulomb_onset(q * (1 - 1e-10), c3, kFc, phi));
-      EXPECT_TRUE(k::mohr_coulomb_onset(q * (1 + 1e-10), c3, kFc, phi));
+      EXPECT_TRUE(k::mohr_coulomb_onset(q, c3, kFc, kf));
+      EXPECT_FALSE(k::mohr_coulomb_onset(q * (1 - 1e-10), c3, kFc, kf));
+      EXPECT_TRUE(k::mohr_coulomb_onset(q * (1 + 1e-10), c3, kFc, kf));
     }
   }
 }
@@ -261,12 +261,12 @@ TEST(DamageLaw, Eq8IsHookesLawAtThePeak) {
     k::compressive_principal_stresses(sig, kNu, PlaneKind::strain, c);
     EXPECT_NEAR(c[0], q, 1e-15 * q);
     EXPECT_NEAR(c[2], p, 1e-9);
-    const double ec0 = k::compressive_threshold_strain(c, kFc, kPhi, kE0, kNu);
+    const double ec0 = k::compressive_threshold_strain(c, kFc, kf, kE0, kNu);
     const double ec1 = k::major_compressive_strain(eps, kNu, PlaneKind::strain);
     expect_rel(ec0, ec1, 1e-12);
   }
   const double c_uni[3] = {kFc, 0.0, 0.0};
-  expect_rel(k::compressive_threshold_strain(c_uni, kFc, kPhi, kE0, kNu), kFc / kE0, 1e-15);
+  expect_rel(k::compressive_threshold_strain(c_uni, kFc, kf, kE0, kNu), kFc / kE0, 1e-15);
 }
 
 TEST(DamageLaw, CompressiveStrengthFromCohesionIsTangentToTheCoulombLine) {
@@ -383,7 +383,7 @@ TEST(DamageLaw, TensionIsCheckedBeforeShear) {
   const double eps[3] = {(sig[0] - kNu * sig[1]) / kE0, (sig[1] - kNu * sig[0]) / kE0, 0.0};
   double c[3];
   k::compressive_principal_stresses(sig, kNu, PlaneKind::stress, c);
-  ASSERT_TRUE(k::mohr_coulomb_onset(c[0], c[2], kFc, kPhi));
+  ASSERT_TRUE(k::mohr_coulomb_onset(c[0], c[2], kFc, k::mohr_coulomb_factor(kPhi)));
   EXPECT_EQ(k::evaluate_damage(eps, sig, params(), PlaneKind::stress, 0.0).law, DamageLaw::tension);
 }
 

@@ -23,8 +23,8 @@ inline void element_internal_force(const Model& model, std::int32_t e, std::span
   gather_element(model.conn, e, u, ue);
   for (int k = 0; k < 6; ++k) x[k] = xy[k] + ue[k];
   // Co-rotational: strain and stress in the element's own frame, forces turned back.
-  const double theta = corotational ? kernels::element_rotation(xy, x) : 0.0;
-  const kernels::Rotation turn(theta);
+  const kernels::Rotation turn =
+      corotational ? kernels::element_rotation_factor(xy, x) : kernels::Rotation{};
   if (corotational) kernels::corotated_displacement(xy, x, turn, ue);
   kernels::elasticity_matrix(damaged_young(model.young[e], model.damage[e]), model.poisson[e],
                              plane, d);

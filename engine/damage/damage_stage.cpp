@@ -26,6 +26,11 @@ DamageStage::DamageStage(const Scene& scene, const Model& model) : plane_(plane_
     fracture_energy_.push_back(m.fracture_energy.value_or(0.0));
   }
   check_crack_band(scene, model);
+  // Two sines an element and a pass were 2 % of a UCS run: the factor is kept per element.
+  mohr_coulomb_.resize(static_cast<std::size_t>(model.num_elements()));
+  for (std::int32_t e = 0; e < model.num_elements(); ++e)
+    mohr_coulomb_[static_cast<std::size_t>(e)] =
+        kernels::mohr_coulomb_factor(model.friction_angle[e]);
 }
 
 void DamageStage::check_crack_band(const Scene& scene, const Model& model) const {
@@ -71,7 +76,7 @@ kernels::DamageParams DamageStage::element_params(const Model& model, std::int32
   p.young = model.young[e];
   p.ft0 = model.tensile_strength[e];
   p.fc0 = model.compressive_strength[e];
-  p.phi = model.friction_angle[e];
+  p.mohr_coulomb = mohr_coulomb_[static_cast<std::size_t>(e)];
   const double gf = fracture_energy_[static_cast<std::size_t>(model.element_material[e])];
   if (gf > 0.0) {
     p.eta = kernels::crack_band_ultimate_strain(

@@ -42,6 +42,7 @@ class DamageStage {
   void check_crack_band(const Scene& scene, const Model& model) const;
 
   std::vector<kernels::DamageParams> params_;  // per material, strengths filled per element
+  std::vector<double> mohr_coulomb_;           // per element: mohr_coulomb_factor(friction angle)
   std::vector<std::uint8_t> damageable_;       // per material
   std::vector<double> detach_at_;              // per material
   std::vector<double> fracture_energy_;        // per material: G_f, 0 = no crack band
