@@ -118,6 +118,28 @@ TEST(CommandLine, ASecondRunTakesItsMeshFromTheCacheAndGivesTheSameResults) {
   }
 }
 
+TEST(CommandLine, GmshIsLoadedOnlyToMesh) {
+  // Gmsh and its ~90 libraries took 0.14 s to load in every process: they live in
+  // librockdd_gmsh.so, which build_mesh opens on first use. A mesh-cache miss loads Gmsh
+  // (the dynamic loader's LD_DEBUG=files names libgmsh), a hit and --version never do.
+  test::TempDir tmp;
+  const std::string scene = (kSource / "data/brazilian_disk_elastic.toml").string();
+  const std::string cache = " --mesh-cache '" + (tmp.path() / "cache").string() + "'";
+  const auto loaded = [&](const std::string& args) {
+    const test::Invocation run =
+        test::run_shell("cd '" + tmp.path().string() + "' && LD_DEBUG=files '" + ROCKDD_BINARY +
+                        "' " + args + " 2>&1");
+    EXPECT_EQ(run.exit_code, 0) << args;
+    return run.output.find("libgmsh") != std::string::npos;
+  };
+  EXPECT_FALSE(loaded("--version"));
+  EXPECT_TRUE(loaded("run '" + scene + "' --quiet --out miss" + cache));
+  EXPECT_FALSE(loaded("run '" + scene + "' --quiet --out hit" + cache));
+  EXPECT_EQ(nlohmann::json::parse(test::read_text(
+                tmp.path() / "hit/brazilian-disk-elastic/summary.json"))["mesh_cache"],
+            "hit");
+}
+
 TEST(CommandLine, AStoredOrderingGivesBitwiseTheResultsOfComputingIt) {
   // The fill-reducing ordering is kept beside the cached mesh: a run that reads it (hit)
   // writes bitwise the files of one that computed it (miss) and of one without a cache; a

@@ -12,6 +12,7 @@
 #include "engine/mesh/builtin_shapes.hpp"
 #include "engine/mesh/finish_mesh.hpp"
 #include "engine/mesh/gmsh_model_reader.hpp"
+#include "engine/mesh/gmsh_module.hpp"
 #include "engine/mesh/gmsh_session.hpp"
 #include "engine/mesh/mesh.hpp"
 #include "engine/mesh/msh2_node_references.hpp"
@@ -168,7 +169,8 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
 
 }  // namespace
 
-Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file, int gmsh_threads) {
+Mesh mesh_with_gmsh(const MeshSpec& spec, const std::filesystem::path& scene_file,
+                    int gmsh_threads) {
   const MeshSource source{scene_file.string(), scene_key(spec.kind)};
   TaggedMesh raw;
   {

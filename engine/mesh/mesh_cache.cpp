@@ -1,7 +1,5 @@
 #include "engine/mesh/mesh_cache.hpp"
 
-#include <gmsh.h>
-
 #include <bit>
 #include <cstdint>
 #include <cstdlib>
@@ -18,7 +16,7 @@
 #include <vector>
 
 #include "engine/content_hash.hpp"
-#include "engine/mesh/gmsh_session.hpp"
+#include "engine/mesh/gmsh_module.hpp"
 #include "engine/mesh/mesh_errors.hpp"
 #include "engine/output/atomic_file.hpp"
 #include "engine/scene/mesh_budget.hpp"
@@ -54,15 +52,15 @@ std::string bits(double value) {
   return text;
 }
 
-/// Gmsh's own version (the library's, which may differ from the header's).
-const std::string& gmsh_version() {
-  static const std::string version = [] {
-    GmshSession session;
-    std::string text;
-    gmsh::option::getString("General.Version", text);
-    return text;
+/// The Gmsh library that would mesh (the library's, which may differ from the header's): its
+/// file, with the full version in its name, without loading it, so that a hit never loads
+/// Gmsh; else the version the loaded library reports.
+const std::string& gmsh_identity() {
+  static const std::string identity = [] {
+    const std::string file = gmsh_library_identity();
+    return file.empty() ? "version " + gmsh_module().version() : "library " + file;
   }();
-  return version;
+  return identity;
 }
 
 /// True when a .geo names other files, whose content the key would not see.
@@ -249,7 +247,7 @@ std::optional<std::filesystem::path> mesh_cache_dir() {
 
 std::optional<std::string> mesh_cache_key(const MeshSpec& spec) {
   std::ostringstream key;
-  key << kMagic << "gmsh " << gmsh_version() << "\nmesh code " << ROCKDD_MESH_CODE_HASH << '\n';
+  key << kMagic << "gmsh " << gmsh_identity() << "\nmesh code " << ROCKDD_MESH_CODE_HASH << '\n';
   switch (spec.kind) {
     case MeshSpec::Kind::rectangle:
       key << "rectangle size " << bits(spec.size[0]) << ' ' << bits(spec.size[1]) << " origin "
