@@ -112,6 +112,9 @@ DamageChange DamageStage::evaluate(Model& model, double band) {
         for (std::int32_t e = range.begin(); e != range.end(); ++e) {
           if (!damageable_[static_cast<std::size_t>(model.element_material[e])]) continue;
           const double w_old = model.damage[e];
+          // An undamaged element short of its onset cannot start damage (a law fires only at
+          // ratio >= 1; the margin covers the ratio's own rounding): most elements, most passes.
+          if (w_old == 0.0 && ratio_[e] < 1.0 - 1e-9) continue;
           const auto i = 3 * static_cast<std::size_t>(e);
           const kernels::DamageUpdate update = kernels::evaluate_damage(
               &model.strain[i], &model.stress[i], element_params(model, e), plane_, w_old);
