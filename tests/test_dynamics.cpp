@@ -43,6 +43,39 @@ std::map<std::string, std::vector<double>> run(const std::string& text) {
   return r.history;
 }
 
+/// A 1 m x 2 m column on a fixed base under gravity (E = 1 GPa, rho = 2500), with a probe of
+/// the base's reaction; `time` is the body of its [time] table.
+std::string column(const std::string& analysis, const std::string& time) {
+  return R"(
+[scene]
+name = "column"
+analysis = ")" +
+         analysis + R"("
+gravity = [0.0, -10.0]
+[time]
+)" + time +
+         R"(
+[mesh]
+shape = "rectangle"
+size = [1.0, 2.0]
+divisions = [4, 8]
+[[material]]
+body = "body"
+density = 2500.0
+young = 1e9
+poisson = 0.2
+[[boundary]]
+on = "bottom"
+fix = ["x", "y"]
+[[probe]]
+name = "base"
+on = "bottom"
+fields = ["fy"]
+[output]
+every = 0
+)";
+}
+
 TEST(FreeBlock, FallsAsHalfGTSquaredWithBothIntegrators) {
   // A free block under gravity: u_y = -g t^2 / 2, v_y = -g t; both schemes integrate a
   // constant acceleration exactly, so 1e-9 relative is round-off.
@@ -82,35 +115,10 @@ TEST(IntegratorDissipation, DdaDampsWhatTheBalanceMissesAndNewmarkNothing) {
   // m (a_n - a_{n+1}) du / 2 a step (more than 1 % of the work over 200 steps).
   // Measured: largest gap 4.4e-7 (DDA) and 7.3e-6 (Newmark, growing with the steps) of the
   // work; DDA damped 50 % of it (the mesh's high modes have omega dt >> 1).
-  const std::string text = R"(
-[scene]
-name = "column"
-analysis = "dynamic"
-gravity = [0.0, -10.0]
-[time]
-dt = 1e-3
-steps = 200
-[mesh]
-shape = "rectangle"
-size = [1.0, 2.0]
-divisions = [4, 8]
-[[material]]
-body = "body"
-density = 2500.0
-young = 1e9
-poisson = 0.2
-[[boundary]]
-on = "bottom"
-fix = ["x", "y"]
-[output]
-every = 0
-)";
   for (const char* integrator : {"dda", "newmark"}) {
     SCOPED_TRACE(integrator);
-    std::string scene = text;
-    scene.replace(scene.find("[mesh]"), 6,
-                  std::string("integrator = \"") + integrator + "\"\n[mesh]");
-    const auto h = run(scene);
+    const auto h = run(column(
+        "dynamic", std::string("dt = 1e-3\nsteps = 200\nintegrator = \"") + integrator + "\""));
     const auto& work = h.at("energy.external_work");
     const auto& damped = h.at("energy.integrator");
     for (std::size_t i = 1; i < work.size(); ++i) {
@@ -128,34 +136,7 @@ every = 0
 TEST(QuasiStatic, StartsEveryStepAtRest) {
   // Quasi-static (DDA dynamic ratio 0) under gravity with a fixed base: the column settles to
   // the static self-weight solution, where the base reaction equals the weight.
-  const std::string text = R"(
-[scene]
-name = "settle"
-analysis = "quasi-static"
-gravity = [0.0, -10.0]
-[time]
-dt = 1.0
-steps = 3
-[mesh]
-shape = "rectangle"
-size = [1.0, 2.0]
-divisions = [4, 8]
-[[material]]
-body = "body"
-density = 2500.0
-young = 1e9
-poisson = 0.2
-[[boundary]]
-on = "bottom"
-fix = ["x", "y"]
-[[probe]]
-name = "base"
-on = "bottom"
-fields = ["fy"]
-[output]
-every = 0
-)";
-  const auto h = run(text);
+  const auto h = run(column("quasi-static", "dt = 1.0\nsteps = 3"));
   // The inertia term 2M/dt^2 is ~1e-6 of K here: the first step already lands on the
   // static answer to that order, and later steps stay there.
   EXPECT_NEAR(h.at("base.fy").back(), 2500.0 * 10.0 * 2.0, 1e-3);

@@ -202,16 +202,20 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
 
 TEST(BrazilianDisk, DynamicSplitClosesItsEnergyBalance) {
   // The same disk with inertia (issue 11): platen at 0.1 m/s, dt = 0.1 us, to a 95 % load
-  // drop. It runs through the split, the halves move apart (the mean x velocity of the rock
-  // right of x = 0.2 R exceeds that left of -0.2 R), and at every step past 1 % of
+  // drop. It runs through the split, the halves fly apart faster than the platen moves (the
+  // mean x velocity of the rock right of x = 0.2 R less that left of -0.2 R exceeds 0.1 m/s),
+  // and at every step past 1 % of
   // the final work, work = strain + kinetic energy + damage and friction dissipation + what
   // the integrator damped, to 2 % of the work. Newmark's average acceleration damps nothing
   // (its term is round-off); DDA's scheme damps m (a_n - a_{n+1}) du / 2 a step, which the
   // balance books (summary energy.integrator_dissipation). Measured (Newmark, DDA): peak
   // 174.4, 175.2 kN (P / (pi R t) 2.22, 2.23 MPa: Huang's 2.118 plus the platen's rate), gap
-  // 0.49, 0.49 %; DDA damped 8.0 % of the work. Before the overlaps that a detachment exposes
-  // were forgiven with inertia too, a copy of a split node found 1.6 um deep in the face
-  // across the crack was thrown at 19 m/s, and 3.3 % (Newmark) to 13 % (DDA) was created.
+  // 0.49, 0.49 %; halves opening at 0.41, 0.60 m/s; DDA damped 8.0 % of the work. Re-solves
+  // with inertia are not measured as snap-back (the energy they free is kinetic),
+  // so summary energy.created_by_resolves is 0 by construction and not checked. Before the overlaps
+  // that a detachment exposes were forgiven with inertia too, a copy of a split node found 1.6 um
+  // deep in the face across the crack was thrown at 19 m/s, and 3.3 % (Newmark) to 13 % (DDA) was
+  // created.
   for (const char* integrator : {"newmark", "dda"}) {
     SCOPED_TRACE(integrator);
     const DiskSplit split = run_displacement_disk(
@@ -219,9 +223,8 @@ TEST(BrazilianDisk, DynamicSplitClosesItsEnergyBalance) {
          "time.end=4e-4", "boundary.3.velocity_y=-0.1", "time.stop_at_softening=0.95"});
     EXPECT_LT(split.final_over_peak, 0.05);
     EXPECT_NEAR(split.peak_strength, 2.118e6, 0.1 * 2.118e6);
-    EXPECT_GT(split.opening_speed, 0.0) << "the halves close in";
+    EXPECT_GT(split.opening_speed, 0.1);
     EXPECT_LT(split.energy_gap, 0.02);
-    EXPECT_LT(split.created, 1e-3);
     if (std::string(integrator) == "newmark")
       EXPECT_LT(std::abs(split.integrator), 1e-6);
     else

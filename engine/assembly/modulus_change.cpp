@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 
+#include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_state.hpp"
 #include "kernels/corotation.hpp"
 
@@ -52,21 +53,13 @@ void modulus_change_terms(const Model& model, std::span<const std::int32_t> equa
 void add_modulus_change(const Model& model, const StiffnessLayout& layout,
                         std::span<const std::int32_t> changed,
                         std::span<const double> damage_before, std::span<double> values) {
-  const kernels::PlaneKind plane = plane_kind(model.plane);
   for (const std::int32_t e : changed) {
     const double before = damaged_young(model.young[e], damage_before[e]);
     const double after = damaged_young(model.young[e], model.damage[e]);
     if (after == before) continue;
-    double xy[6], d[9], k[36];
-    gather_element(model.conn, e, model.X, xy);
-    kernels::elasticity_matrix(after - before, model.poisson[e], plane, d);
-    kernels::cst_stiffness(xy, d, model.thickness, k);
-    if (!model.rotation.empty() && model.rotation[e] != 0.0)
-      kernels::rotate_element_matrix(kernels::Rotation(model.rotation[e]), k);
-    const std::int32_t* to = &layout.scatter[static_cast<std::size_t>(e) * kElementUpperEntries];
-    for (int a = 0; a < 6; ++a)
-      for (int b = a; b < 6; ++b, ++to)
-        if (*to >= 0) values[*to] += k[6 * a + b];
+    double k[36];
+    element_stiffness(model, e, after - before, k);
+    scatter_element_matrix(layout, e, k, values);
   }
 }
 

@@ -330,7 +330,8 @@ bool ContactStage::detect(std::span<const double> positions) {
                                 : 0.0;
     // With inertia the push-back of a new overlap is part of the momentum balance: every
     // pair that can close within a step is a candidate at its start (the step reach sees to
-    // that), and its contact resists the approach. A pair the last step did not have at all
+    // that, unless time.max_step_displacement allows more), and its contact resists the
+    // approach. A pair the last step did not have at all
     // but finds overlapping is one that a change of topology made: a detachment that split a
     // block (a vertex and an edge of what was one block overlap through the broken element
     // that stood between them), or copies of a split node leaving the corner they shared. No
