@@ -178,7 +178,7 @@ void BM_RebuildAfterDetachment(benchmark::State& state) {
     for (int p = 0; p < 7; ++p) part[p] += seconds_between(t[p], t[p + 1]);
     benchmark::DoNotOptimize(loads.data());
     benchmark::DoNotOptimize(coloring.element.data());
-    benchmark::DoNotOptimize(fragments.num_nodes());
+    benchmark::DoNotOptimize(fragments.num_dofs());
   }
   report(state, c);
   const char* names[7] = {"fields_ms",  "bc_loads_ms", "coloring_ms", "contact_ms",

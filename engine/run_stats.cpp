@@ -14,6 +14,7 @@ void RunStats::write(nlohmann::json& s) const {
   s["detached_elements"] = detached_elements;
   s["folded_damage_passes"] = folded_damage_passes;
   s["untrusted_updated_solves"] = untrusted_updated_solves;
+  s["parts_cut_loose"] = parts_cut_loose;
 }
 
 }  // namespace rockdd

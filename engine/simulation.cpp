@@ -243,6 +243,14 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
       model_.damage = committed_damage_;
       factorized_mass_coefficient_ = -1.0;  // the moduli changed back
     }
+    // Supports of parts that the last attempt's cascade cut loose end with it: the restraint
+    // of the committed state holds again.
+    if (loose_parts_held_) {
+      fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness,
+                                     scene_.fracture.loose_part_support);
+      loose_parts_held_ = false;
+      factorized_mass_coefficient_ = -1.0;
+    }
     // Each step starts from a freshly assembled matrix: folded changes do not accumulate
     // round-off from step to step.
     if (values_incremental_) factorized_mass_coefficient_ = -1.0;
@@ -341,7 +349,9 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     }
     ++stats_.damage_iterations;
     changed_elements(model_, damage_before_, state_.changed_elements);
-    factor_current = change.grown > 0 && fold_modulus_change(inertia.mass_coefficient);
+    const bool restraint_changed = hold_parts_cut_loose();
+    factor_current =
+        !restraint_changed && change.grown > 0 && fold_modulus_change(inertia.mass_coefficient);
     prepare_system(inertia.mass_coefficient);  // nothing left to do once folded
     // The next solve's internal force at u_trial under the new moduli: bitwise what a full
     // recomputation gives (the same kernel per element, summed in the same order).
@@ -512,6 +522,28 @@ bool Simulation::fold_modulus_change(double mass_coefficient) {
   return true;
 }
 
+bool Simulation::hold_parts_cut_loose() {
+  if (scene_.analysis == Analysis::dynamic) return false;  // inertia holds them
+  const bool broke = std::any_of(
+      state_.changed_elements.begin(), state_.changed_elements.end(),
+      [&](std::int32_t e) { return damage_before_[e] < 1.0 && model_.damage[e] >= 1.0; });
+  if (!broke) return false;
+  FragmentRestraint held(model_, bc_, scene_.fracture.fragment_stiffness,
+                         scene_.fracture.loose_part_support);
+  if (held.same_springs(fragments_)) return false;
+  held.anchor_new_springs(fragments_, state_.du);
+  fragments_ = std::move(held);
+  ++stats_.parts_cut_loose;
+  loose_parts_held_ = true;
+  // The springs act on the step's increment; the next solve starts again from u_trial.
+  std::vector<double> trial_increment(model_.X.size());
+  for (std::size_t d = 0; d < trial_increment.size(); ++d)
+    trial_increment[d] = state_.u_trial[d] - model_.u[d];
+  fragments_.forces(trial_increment, state_.restraint_force);
+  factorized_mass_coefficient_ = -1.0;  // K takes the new springs
+  return true;
+}
+
 void Simulation::solve_system() {
   double* x = state_.rhs.data();
   if (solver_.supernodal()) {  // a fresh factorization: as accurate as CHOLMOD makes it
@@ -641,7 +673,9 @@ void Simulation::detach_fractured_elements() {
   probes_ = std::move(probes);
   coloring_ = color_elements(model_.conn, model_.num_nodes());
   if (scene_.analysis != Analysis::dynamic)
-    fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness);
+    fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness,
+                                   scene_.fracture.loose_part_support);
+  loose_parts_held_ = false;
   auto contact = std::make_unique<ContactStage>(scene_, model_);
   if (contact_) contact->carry_contacts_from(*contact_);
   contact_ = std::move(contact);

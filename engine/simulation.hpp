@@ -118,6 +118,11 @@ class Simulation {
   /// low-rank updates, and into the assembled values, when the cost model expects that to be
   /// cheaper than reassembling and refactorizing (false: nothing done, the caller does that).
   bool fold_modulus_change(double mass_coefficient);
+  /// Without inertia, after a damage pass in which elements broke (w reached 1): a part that
+  /// only they joined to what holds it is loose until the step ends and detaches them, so the
+  /// fragment restraint is rebuilt over the parts (state_.u_trial's increment sets its force).
+  /// True when the springs changed (K must be reassembled).
+  bool hold_parts_cut_loose();
   /// x = K^{-1} rhs in state_.rhs; while the factor carries updates, the solution is checked
   /// against the assembled values and the matrix refactorized if the check fails.
   void solve_system();
@@ -177,8 +182,9 @@ class Simulation {
     double spread = 0.0;      // largest distance of their centroids from that mean
   };
   std::optional<FirstDamage> first_damage_, attempt_first_damage_;
-  double attempt_time_ = 0.0;    // time at the end of the step being attempted
-  FragmentRestraint fragments_;  // loose blocks held in steps without inertia
+  double attempt_time_ = 0.0;      // time at the end of the step being attempted
+  FragmentRestraint fragments_;    // loose blocks held in steps without inertia
+  bool loose_parts_held_ = false;  // fragments_ holds parts the attempt's cascade cut loose
 
   EnergyAccount energy_;               // work and losses beside the state's own energy
   std::vector<double> damage_before_;  // per element, before a damage pass

@@ -156,9 +156,10 @@ TEST(SceneReader, ReadsEveryFieldOfTheExample) {
   EXPECT_EQ(s.output.fields,
             (std::vector<std::string>{"displacement", "stress", "damage", "block"}));
 
-  EXPECT_DOUBLE_EQ(s.fracture.damage_band, 0.005);
+  EXPECT_DOUBLE_EQ(s.fracture.damage_band, 1e-6);
   EXPECT_EQ(s.fracture.max_damage_passes, 500);
   EXPECT_DOUBLE_EQ(s.fracture.fragment_stiffness, 1e-6);
+  EXPECT_DOUBLE_EQ(s.fracture.loose_part_support, 1.0);
 
   // The example writes every key that has a default: nothing was chosen for it.
   EXPECT_TRUE(s.defaults.empty()) << s.defaults.front().first;
@@ -193,9 +194,10 @@ TEST(SceneReader, StaticSceneWithoutTimeRunsOneStepAndRecordsEveryDefault) {
       {"material[0].ultimate_strain", "5"},
       {"material[0].tension_onset", "stress"},
       {"material[0].detach_at_damage", "1"},
-      {"fracture.damage_band", "0.005"},  // recorded since the material can damage
+      {"fracture.damage_band", "1e-06"},  // recorded since the material can damage
       {"fracture.max_damage_passes", "500"},
       {"fracture.fragment_stiffness", "1e-06"},
+      {"fracture.loose_part_support", "1"},
       {"output.dir", "out"},
       {"output.every", "100"},
       {"output.fields",

@@ -22,23 +22,41 @@ namespace rockdd {
 class FragmentRestraint {
  public:
   FragmentRestraint() = default;
-  /// Springs of `fraction` x E0 t / 3 per element corner on every node of a block whose three
-  /// rigid-body modes the prescribed dofs do not all hold. Deterministic, in node order.
-  FragmentRestraint(const Model& model, const BoundaryConditions& bc, double fraction);
+  /// Springs of `fraction` x E0 t / 3 per element corner on every node of a part whose three
+  /// rigid-body modes the prescribed dofs do not all hold. A part is what the elements that are
+  /// not fully broken (w < 1) join: a detached block, or, inside a step's damage cascade, a
+  /// piece that elements broken in that step (still attached, at the floor stiffness) cut
+  /// loose; a node that only broken elements touch is a part alone. Deterministic.
+  /// A part of a held block that broken elements cut loose inside the step instead gets a
+  /// statically determinate support: springs of `support` x E0 t on as few of its dofs as hold
+  /// its free rigid modes.
+  FragmentRestraint(const Model& model, const BoundaryConditions& bc, double fraction,
+                    double support = 1.0);
 
   /// Adds the springs to the diagonal of K: `diagonal[eq]` is the value slot of equation eq.
   void add_stiffness(std::span<const std::int32_t> equation, std::span<const std::int32_t> diagonal,
                      std::span<double> values) const;
-  /// force[d] = k du[d] on the restrained nodes, 0 elsewhere (2 per node).
+  /// force[d] = k du[d] on the restrained dofs, 0 elsewhere (2 per node).
   void forces(std::span<const double> du, std::span<double> force) const;
   /// Elastic energy of the springs at increment du (J): sum of k du^2 / 2.
   double energy(std::span<const double> du) const;
 
-  std::size_t num_nodes() const { return nodes_.size(); }
+  /// Springs added since `before` (inside a step) start from the increment `du` they were
+  /// added at, instead of from the step's start: they hold a part where the step has taken
+  /// it. Springs `before` had keep its anchors.
+  void anchor_new_springs(const FragmentRestraint& before, std::span<const double> du);
+
+  std::size_t num_dofs() const { return dofs_.size(); }
+  /// Whether both hold the same dofs with the same springs (anchors aside).
+  bool same_springs(const FragmentRestraint& other) const {
+    return dofs_ == other.dofs_ && stiffness_ == other.stiffness_;
+  }
 
  private:
-  std::vector<std::int32_t> nodes_;
-  std::vector<double> stiffness_;  // N/m, per restrained node
+  std::vector<std::int32_t> dofs_;
+  std::vector<double> stiffness_;  // N/m, per restrained dof
+  std::vector<double> anchor_;     // increment each spring starts from (empty: all 0)
+  double anchor(std::size_t i) const { return anchor_.empty() ? 0.0 : anchor_[i]; }
 };
 
 }  // namespace rockdd

@@ -2,6 +2,7 @@
 
 #include <Eigen/Dense>
 
+#include <span>
 #include <string>
 
 #include "engine/errors.hpp"
@@ -36,39 +37,47 @@ BoundaryConditions build_boundary_conditions(const Scene& scene, const Model& mo
 
 namespace {
 
-/// Per block, G = sum over prescribed dofs of r r^T with r the dof's value in the three rigid
-/// modes (x translation, y translation, rotation about the block centroid, lengths scaled by
-/// the block's size). The block is held exactly when G is regular.
-std::vector<Eigen::Matrix3d> restraint_gram(const Model& model, const BoundaryConditions& bc) {
-  const auto num_blocks = static_cast<std::size_t>(model.num_blocks);
-  std::vector<Eigen::Vector2d> centroid(num_blocks, Eigen::Vector2d::Zero());
-  std::vector<double> count(num_blocks, 0.0), size(num_blocks, 0.0);
-  for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
-    centroid[model.node_block[n]] += Eigen::Vector2d(model.X[2 * n], model.X[2 * n + 1]);
-    count[model.node_block[n]] += 1.0;
+/// Per group, G = sum over the prescribed dofs of its nodes of r r^T with r the dof's value in
+/// the three rigid modes (x translation, y translation, rotation about the group's centroid,
+/// lengths scaled by the group's size). The group is held exactly when G is regular.
+/// `members` lists (group, node) pairs, each once; a node may belong to several groups.
+std::vector<Eigen::Matrix3d> restraint_gram(const Model& model, const BoundaryConditions& bc,
+                                            std::span<const GroupNode> members,
+                                            std::int32_t num_groups) {
+  const auto groups = static_cast<std::size_t>(num_groups);
+  std::vector<Eigen::Vector2d> centroid(groups, Eigen::Vector2d::Zero());
+  std::vector<double> count(groups, 0.0), size(groups, 0.0);
+  const auto position = [&](std::int32_t n) {
+    return Eigen::Vector2d(model.X[2 * static_cast<std::size_t>(n)],
+                           model.X[2 * static_cast<std::size_t>(n) + 1]);
+  };
+  for (const auto& [b, n] : members) {
+    centroid[b] += position(n);
+    count[b] += 1.0;
   }
-  for (std::size_t b = 0; b < num_blocks; ++b) centroid[b] /= std::max(count[b], 1.0);
-  for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
-    const Eigen::Vector2d r =
-        Eigen::Vector2d(model.X[2 * n], model.X[2 * n + 1]) - centroid[model.node_block[n]];
-    size[model.node_block[n]] = std::max(size[model.node_block[n]], r.norm());
-  }
-  std::vector<Eigen::Matrix3d> g(num_blocks, Eigen::Matrix3d::Zero());
-  for (std::int32_t n = 0; n < model.num_nodes(); ++n) {
-    const std::int32_t b = model.node_block[n];
+  for (std::size_t b = 0; b < groups; ++b) centroid[b] /= std::max(count[b], 1.0);
+  for (const auto& [b, n] : members)
+    size[b] = std::max(size[b], (position(n) - centroid[b]).norm());
+  std::vector<Eigen::Matrix3d> g(groups, Eigen::Matrix3d::Zero());
+  for (const auto& [b, n] : members) {
     const double L = std::max(size[b], 1e-300);
-    const double dx = (model.X[2 * n] - centroid[b].x()) / L,
-                 dy = (model.X[2 * n + 1] - centroid[b].y()) / L;
-    if (bc.prescribed[2 * n]) {
-      Eigen::Vector3d r(1, 0, -dy);
-      g[b] += r * r.transpose();
+    const Eigen::Vector2d r = (position(n) - centroid[b]) / L;
+    if (bc.prescribed[2 * static_cast<std::size_t>(n)]) {
+      Eigen::Vector3d mode(1, 0, -r.y());
+      g[b] += mode * mode.transpose();
     }
-    if (bc.prescribed[2 * n + 1]) {
-      Eigen::Vector3d r(0, 1, dx);
-      g[b] += r * r.transpose();
+    if (bc.prescribed[2 * static_cast<std::size_t>(n) + 1]) {
+      Eigen::Vector3d mode(0, 1, r.x());
+      g[b] += mode * mode.transpose();
     }
   }
   return g;
+}
+
+std::vector<Eigen::Matrix3d> restraint_gram(const Model& model, const BoundaryConditions& bc) {
+  std::vector<GroupNode> members(static_cast<std::size_t>(model.num_nodes()));
+  for (std::int32_t n = 0; n < model.num_nodes(); ++n) members[n] = {model.node_block[n], n};
+  return restraint_gram(model, bc, members, model.num_blocks);
 }
 
 /// The slowest rigid mode of a Gram matrix, and whether the constraints miss it.
@@ -82,6 +91,15 @@ bool misses_a_mode(const Eigen::Matrix3d& g, Eigen::Vector3d* mode = nullptr) {
 
 std::vector<std::uint8_t> unrestrained_blocks(const Model& model, const BoundaryConditions& bc) {
   const std::vector<Eigen::Matrix3d> g = restraint_gram(model, bc);
+  std::vector<std::uint8_t> free(g.size(), 0);
+  for (std::size_t b = 0; b < g.size(); ++b) free[b] = misses_a_mode(g[b]) ? 1 : 0;
+  return free;
+}
+
+std::vector<std::uint8_t> unrestrained_groups(const Model& model, const BoundaryConditions& bc,
+                                              std::span<const GroupNode> members,
+                                              std::int32_t num_groups) {
+  const std::vector<Eigen::Matrix3d> g = restraint_gram(model, bc, members, num_groups);
   std::vector<std::uint8_t> free(g.size(), 0);
   for (std::size_t b = 0; b < g.size(); ++b) free[b] = misses_a_mode(g[b]) ? 1 : 0;
   return free;

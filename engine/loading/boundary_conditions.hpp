@@ -3,6 +3,7 @@
 // the free dofs that the stiffness is assembled over.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,19 @@ std::optional<FreeBlock> find_free_block(const Model& model, const BoundaryCondi
 
 /// Per block, 1 when the prescribed dofs do not hold all three of its rigid-body modes.
 std::vector<std::uint8_t> unrestrained_blocks(const Model& model, const BoundaryConditions& bc);
+
+/// A node's membership of a group of nodes.
+struct GroupNode {
+  std::int32_t group = 0;
+  std::int32_t node = 0;
+};
+
+/// The same for any groups of nodes (`members`: (group, node) pairs, each once; a node may be
+/// in several groups): per group in [0, num_groups), 1 when the prescribed dofs of its nodes do
+/// not hold all three of its rigid-body modes.
+std::vector<std::uint8_t> unrestrained_groups(const Model& model, const BoundaryConditions& bc,
+                                              std::span<const GroupNode> members,
+                                              std::int32_t num_groups);
 
 /// A static analysis needs every block held against its three rigid-body modes; throws
 /// InputError naming the first block that is not (and its body).

@@ -125,11 +125,13 @@ struct ProbeSpec {
 /// [fracture]: the numerical devices of damage and fracture (docs/method-choices.md,
 /// "Damage events" and "Fragment restraint"); docs/convergence.md measures each of them.
 struct FractureSpec {
-  double damage_band = 0.005;        // a damage pass starts damage only in elements within this
+  double damage_band = 1e-6;         // a damage pass starts damage only in elements within this
                                      // fraction of the most overstressed one's onset ratio
   int max_damage_passes = 500;       // damage passes per step before the step goes on regardless
   double fragment_stiffness = 1e-6;  // spring per corner, x E0 t, on blocks no boundary holds,
                                      // in steps without inertia
+  double loose_part_support = 1.0;   // x E0 t: the springs of the statically determinate support
+                                     // of a part that a damage cascade cuts loose inside a step
 };
 
 /// [solver]: how the linear systems are solved; changes round-off only (docs/benchmarks.md).

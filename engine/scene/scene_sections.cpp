@@ -352,7 +352,8 @@ FractureSpec read_fracture(TableReader& root, bool has_damage) {
   // Defaults are listed only where they are used: in scenes whose materials can damage.
   if (!has_damage && !root.has("fracture")) return {};
   TableReader table = optional_table(root, "fracture");
-  table.allow_only({"damage_band", "max_damage_passes", "fragment_stiffness"});
+  table.allow_only(
+      {"damage_band", "max_damage_passes", "fragment_stiffness", "loose_part_support"});
   FractureSpec fracture;
   fracture.damage_band = table.number_or("damage_band", fracture.damage_band, above(0));
   if (auto passes = table.integer("max_damage_passes", 1, 1000000)) {
@@ -362,6 +363,8 @@ FractureSpec read_fracture(TableReader& root, bool has_damage) {
   }
   fracture.fragment_stiffness = table.number_or("fragment_stiffness", fracture.fragment_stiffness,
                                                 between(0, false, 1, true));
+  fracture.loose_part_support = table.number_or("loose_part_support", fracture.loose_part_support,
+                                                between(0, false, 1e6, true));
   return fracture;
 }
 
