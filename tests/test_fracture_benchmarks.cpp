@@ -171,10 +171,11 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
   // ends as two large blocks (> 10 % of the elements each), one each side of the loaded
   // diameter, within 25 % of each other in size. The same at dt / 2 and at h / sqrt(2).
   // Measured (h, dt/2, h/sqrt2): peak 2.153, 2.153, 2.146 MPa (+1.6, +1.6, +1.3 %); load to
-  // 0.0, 0.1, 0.0 % of the peak; damaged elements within 0.2 R of the diameter 65, 66, 52 %.
-  // That share is short of the 80 % issue 11 asks: after the main crack, cracks start at the
-  // flats' edges, 6-10 mm off the diameter, within the same step (docs/convergence.md). It is
-  // held here at >= 45 %, so that a change that spreads damage further shows.
+  // 0.0, 0.1, 0.0 % of the peak; damaged elements within 0.2 R of the diameter 75, 74, 54 %.
+  // That share is short of the 80 % issue 11 asks: once the main crack is through, the halves,
+  // still pressed by the platens, crack again 6-10 mm off the diameter within the same step
+  // (docs/convergence.md). It is held here at >= 50 %, so that a change that spreads damage
+  // further shows.
   // Energy: at every step the work done equals strain + kinetic energy + damage and friction
   // dissipation + the snap-back energy (released as the disk re-settles after each damage
   // event at fixed platens, measured as the fall of the stored energy in that re-solve), to
@@ -192,7 +193,7 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
     EXPECT_LT(split.large_block_x[0] * split.large_block_x[1], 0.0) << "both on one side";
     const double a = split.large_block_size[0], b = split.large_block_size[1];
     EXPECT_LT(std::abs(a - b), 0.25 * std::max(a, b));
-    EXPECT_GE(split.near_diameter, 0.45) << split.damaged << " damaged";
+    EXPECT_GE(split.near_diameter, 0.50) << split.damaged << " damaged";
     EXPECT_LT(split.energy_gap, 0.02);
     // No re-solve gains energy (a sound one only releases it): snap-back is a release, and a
     // negative term would be energy the scheme created hiding in it. Measured: 0 J.
