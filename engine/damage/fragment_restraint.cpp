@@ -11,35 +11,60 @@ namespace rockdd {
 
 namespace {
 
-/// Parts: the elements that are not fully broken (w < 1), joined across the edges they share.
-/// part[e] numbers them in element order; -1 for a broken element.
-std::vector<std::int32_t> intact_parts(const Model& model, std::int32_t& num_parts) {
+/// Parts: the elements that are not fully broken (w < 1), joined across the edges they share
+/// (found through the elements around each node: no sort). part[e] numbers them in element
+/// order; -1 for a broken element.
+std::vector<std::int32_t> intact_parts(const Model& model, const NodeIncidence& incidence,
+                                       std::int32_t& num_parts) {
   const auto num_elements = static_cast<std::size_t>(model.num_elements());
-  const EdgeAdjacency adjacency = build_edge_adjacency(model.conn, "fragment restraint");
   std::vector<std::int32_t> parent(num_elements);
   std::iota(parent.begin(), parent.end(), 0);
   const auto root = [&](std::int32_t e) {
     while (parent[e] != e) e = parent[e] = parent[parent[e]];
     return e;
   };
+  const auto intact = [&](std::int32_t e) { return model.damage[e] < 1.0; };
   for (std::size_t e = 0; e < num_elements; ++e) {
-    if (model.damage[e] >= 1.0) continue;
+    if (!intact(static_cast<std::int32_t>(e))) continue;
     for (int k = 0; k < 3; ++k) {
-      const std::int32_t other = adjacency.neighbor[3 * e + k];
-      if (other < 0 || model.damage[other] >= 1.0) continue;
-      const std::int32_t a = root(static_cast<std::int32_t>(e)), b = root(other);
-      if (a != b) parent[std::max(a, b)] = std::min(a, b);  // the smaller element leads
+      const std::int32_t a = model.conn[3 * e + k], b = model.conn[3 * e + (k + 1) % 3];
+      for (std::int32_t i = incidence.offset[a]; i < incidence.offset[a + 1]; ++i) {
+        const std::int32_t other = incidence.element[i];
+        if (other <= static_cast<std::int32_t>(e) || !intact(other)) continue;
+        const std::int32_t* corner = &model.conn[3 * static_cast<std::size_t>(other)];
+        if (corner[0] != b && corner[1] != b && corner[2] != b) continue;
+        const std::int32_t ra = root(static_cast<std::int32_t>(e)), rb = root(other);
+        if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);  // the smaller one leads
+      }
     }
   }
   std::vector<std::int32_t> part(num_elements, -1);
   num_parts = 0;
   for (std::size_t e = 0; e < num_elements; ++e) {
-    if (model.damage[e] >= 1.0) continue;
+    if (!intact(static_cast<std::int32_t>(e))) continue;
     const std::int32_t r = root(static_cast<std::int32_t>(e));
     if (part[r] < 0) part[r] = num_parts++;
     part[e] = part[r];
   }
   return part;
+}
+
+/// Each node's parts, in node order (a node is in every part one of its intact elements is in).
+std::vector<GroupNode> part_members(const NodeIncidence& incidence,
+                                    std::span<const std::int32_t> part, std::int32_t num_nodes) {
+  std::vector<GroupNode> members;
+  members.reserve(static_cast<std::size_t>(num_nodes));
+  for (std::int32_t n = 0; n < num_nodes; ++n) {
+    const std::size_t first = members.size();
+    for (std::int32_t i = incidence.offset[n]; i < incidence.offset[n + 1]; ++i) {
+      const std::int32_t p = part[incidence.element[i]];
+      if (p < 0) continue;
+      bool seen = false;
+      for (std::size_t m = first; m < members.size(); ++m) seen = seen || members[m].group == p;
+      if (!seen) members.push_back({p, n});
+    }
+  }
+  return members;
 }
 
 /// Adds to k (per dof) a statically determinate support of part p: springs on as few of its
@@ -51,30 +76,28 @@ void hold_rigid_modes(const Model& model, const BoundaryConditions& bc,
                       std::span<const std::uint8_t> held, std::span<const GroupNode> members,
                       std::span<const std::int32_t> part, std::int32_t p, double support,
                       std::vector<double>& k) {
-  const auto first =
-      std::lower_bound(members.begin(), members.end(), p,
-                       [](const GroupNode& m, std::int32_t g) { return m.group < g; });
-  const auto last = std::upper_bound(
-      first, members.end(), p, [](std::int32_t g, const GroupNode& m) { return g < m.group; });
+  std::vector<std::int32_t> nodes;
+  for (const auto& [q, n] : members)
+    if (q == p) nodes.push_back(n);
   const auto position = [&](std::int32_t n) {
     return Eigen::Vector2d(model.X[2 * static_cast<std::size_t>(n)],
                            model.X[2 * static_cast<std::size_t>(n) + 1]);
   };
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (auto m = first; m != last; ++m) centroid += position(m->node);
-  centroid /= static_cast<double>(last - first);
+  for (const std::int32_t n : nodes) centroid += position(n);
+  centroid /= static_cast<double>(nodes.size());
   double size = 0.0;
-  for (auto m = first; m != last; ++m) size = std::max(size, (position(m->node) - centroid).norm());
+  for (const std::int32_t n : nodes) size = std::max(size, (position(n) - centroid).norm());
   size = std::max(size, 1e-300);
   const auto row = [&](std::int32_t n, int c) {
     const Eigen::Vector2d r = (position(n) - centroid) / size;
     return c == 0 ? Eigen::Vector3d(1, 0, -r.y()) : Eigen::Vector3d(0, 1, r.x());
   };
   Eigen::Matrix3d g = Eigen::Matrix3d::Zero();
-  for (auto m = first; m != last; ++m)
+  for (const std::int32_t n : nodes)
     for (int c = 0; c < 2; ++c)
-      if (bc.prescribed[2 * static_cast<std::size_t>(m->node) + c] || held[m->node])
-        g += row(m->node, c) * row(m->node, c).transpose();
+      if (bc.prescribed[2 * static_cast<std::size_t>(n) + c] || held[n])
+        g += row(n, c) * row(n, c).transpose();
   double young = 0.0, count = 0.0;
   for (std::int32_t e = 0; e < model.num_elements(); ++e)
     if (part[e] == p) {
@@ -89,13 +112,13 @@ void hold_rigid_modes(const Model& model, const BoundaryConditions& bc,
     double best = 0.0;
     std::int32_t best_node = -1;
     int best_c = 0;
-    for (auto m = first; m != last; ++m)
+    for (const std::int32_t n : nodes)
       for (int c = 0; c < 2; ++c) {
-        if (bc.prescribed[2 * static_cast<std::size_t>(m->node) + c] || held[m->node]) continue;
-        const double a = std::abs(row(m->node, c).dot(mode));
+        if (bc.prescribed[2 * static_cast<std::size_t>(n) + c] || held[n]) continue;
+        const double a = std::abs(row(n, c).dot(mode));
         if (a > best * (1.0 + 1e-12)) {
           best = a;
-          best_node = m->node;
+          best_node = n;
           best_c = c;
         }
       }
@@ -109,22 +132,10 @@ void hold_rigid_modes(const Model& model, const BoundaryConditions& bc,
 
 FragmentRestraint::FragmentRestraint(const Model& model, const BoundaryConditions& bc,
                                      double fraction, double support) {
+  const NodeIncidence incidence = build_node_incidence(model.conn, model.num_nodes());
   std::int32_t num_parts = 0;
-  const std::vector<std::int32_t> part = intact_parts(model, num_parts);
-  std::vector<GroupNode> members;
-  members.reserve(model.conn.size());
-  for (std::int32_t e = 0; e < model.num_elements(); ++e)
-    if (part[e] >= 0)
-      for (int c = 0; c < 3; ++c)
-        members.push_back({part[e], model.conn[3 * static_cast<std::size_t>(e) + c]});
-  std::sort(members.begin(), members.end(), [](const GroupNode& a, const GroupNode& b) {
-    return a.group != b.group ? a.group < b.group : a.node < b.node;
-  });
-  members.erase(std::unique(members.begin(), members.end(),
-                            [](const GroupNode& a, const GroupNode& b) {
-                              return a.group == b.group && a.node == b.node;
-                            }),
-                members.end());
+  const std::vector<std::int32_t> part = intact_parts(model, incidence, num_parts);
+  const std::vector<GroupNode> members = part_members(incidence, part, model.num_nodes());
   const auto num_nodes = static_cast<std::size_t>(model.num_nodes());
   // Held parts and nodes: a part the prescribed dofs hold, then, until nothing changes, a part
   // pinned to held nodes (a node of a held part moves with it) so that its modes are held.
@@ -134,7 +145,11 @@ FragmentRestraint::FragmentRestraint(const Model& model, const BoundaryCondition
     grew = false;
     for (const auto& [p, n] : members)
       if (!free[p] && !held[n]) held[n] = grew = true;
-    if (!grew) break;
+    // Only a free part with a held node can be pinned by it.
+    const bool hinged = std::any_of(members.begin(), members.end(), [&](const GroupNode& m) {
+      return free[m.group] && held[m.node];
+    });
+    if (!grew || !hinged) break;
     BoundaryConditions pinned = bc;
     for (std::size_t n = 0; n < num_nodes; ++n)
       if (held[n]) pinned.prescribed[2 * n] = pinned.prescribed[2 * n + 1] = 1;
@@ -145,7 +160,10 @@ FragmentRestraint::FragmentRestraint(const Model& model, const BoundaryCondition
   // around it but are not detached yet): it gets a support that holds only its free rigid
   // modes. The other free parts (blocks detached loose) and lone nodes (only broken elements
   // touch them) get the weak spring on every node.
-  const std::vector<std::uint8_t> block_free = unrestrained_blocks(model, bc);
+  const bool any_free = std::find(free.begin(), free.end(), 1) != free.end();
+  const std::vector<std::uint8_t> block_free =
+      any_free ? unrestrained_blocks(model, bc)
+               : std::vector<std::uint8_t>(static_cast<std::size_t>(model.num_blocks), 1);
   std::vector<std::uint8_t> cut_loose(static_cast<std::size_t>(num_parts), 0),
       in_part(num_nodes, 0);
   for (std::int32_t e = 0; e < model.num_elements(); ++e)
