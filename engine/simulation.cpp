@@ -676,11 +676,20 @@ void Simulation::detach_fractured_elements() {
     fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness,
                                    scene_.fracture.loose_part_support);
   loose_parts_held_ = false;
+  if (scene_.analysis != Analysis::dynamic && corotational_) turn_loose_block_frames();
   auto contact = std::make_unique<ContactStage>(scene_, model_);
   if (contact_) contact->carry_contacts_from(*contact_);
   contact_ = std::move(contact);
   rebuild_layout();
   recompute_committed_forces();
+}
+
+void Simulation::turn_loose_block_frames() {
+  const std::vector<std::uint8_t> free = unrestrained_blocks(model_, bc_);
+  std::vector<std::int32_t> loose;
+  for (std::int32_t e = 0; e < model_.num_elements(); ++e)
+    if (free[model_.element_block[e]]) loose.push_back(e);
+  update_element_rotations(model_, model_.u, loose);
 }
 
 void Simulation::recompute_committed_forces() {

@@ -139,6 +139,11 @@ class Simulation {
   double stored_energy();
   /// Fills state_.reaction_first: the constraints' force at the first solve of the step.
   void record_first_reaction();
+  /// Without inertia, after nodes split: the blocks no boundary holds take their current
+  /// rotation as their stiffness frame. A stressed piece cut loose with a stale frame meets,
+  /// in the linear solve, a moment (its stress times its turn so far) that only the weak
+  /// fragment springs resist, and turns by a large angle in one step.
+  void turn_loose_block_frames();
   /// After nodes split: loads and constraint forces of the committed state on the new nodes.
   void recompute_committed_forces();
   /// Force scale of the committed state (N): the largest element edge force, load or reaction.

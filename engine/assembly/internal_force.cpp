@@ -122,15 +122,28 @@ double largest_rotation_change(const Model& model, std::span<const double> u) {
       [](double a, double b) { return std::max(a, b); });
 }
 
+namespace {
+
+double current_rotation(const Model& model, std::span<const double> u, std::int32_t e) {
+  double xy[6], x[6];
+  gather_element(model.conn, e, model.X, xy);
+  gather_element(model.conn, e, u, x);
+  for (int k = 0; k < 6; ++k) x[k] += xy[k];
+  return kernels::element_rotation(xy, x);
+}
+
+}  // namespace
+
 void update_element_rotations(Model& model, std::span<const double> u) {
   model.rotation.resize(static_cast<std::size_t>(model.num_elements()));
-  tbb::parallel_for(std::int32_t{0}, model.num_elements(), [&](std::int32_t e) {
-    double xy[6], x[6];
-    gather_element(model.conn, e, model.X, xy);
-    gather_element(model.conn, e, u, x);
-    for (int k = 0; k < 6; ++k) x[k] += xy[k];
-    model.rotation[e] = kernels::element_rotation(xy, x);
-  });
+  tbb::parallel_for(std::int32_t{0}, model.num_elements(),
+                    [&](std::int32_t e) { model.rotation[e] = current_rotation(model, u, e); });
+}
+
+void update_element_rotations(Model& model, std::span<const double> u,
+                              std::span<const std::int32_t> elements) {
+  model.rotation.resize(static_cast<std::size_t>(model.num_elements()), 0.0);
+  for (const std::int32_t e : elements) model.rotation[e] = current_rotation(model, u, e);
 }
 
 double strain_energy(const Model& model, std::span<const double> strain,

@@ -37,6 +37,10 @@ double largest_rotation_change(const Model& model, std::span<const double> u);
 /// Sets each element's stiffness frame (Model::rotation) to its rotation at displacement `u`.
 void update_element_rotations(Model& model, std::span<const double> u);
 
+/// The same for `elements` only.
+void update_element_rotations(Model& model, std::span<const double> u,
+                              std::span<const std::int32_t> elements);
+
 /// Strain energy, sum of 1/2 sigma : eps t A over the elements (J).
 double strain_energy(const Model& model, std::span<const double> strain,
                      std::span<const double> stress);
