@@ -644,7 +644,9 @@ void Simulation::detach_fractured_elements() {
   std::vector<double> threshold(static_cast<std::size_t>(model_.num_elements()));
   for (std::int32_t e = 0; e < model_.num_elements(); ++e)
     threshold[e] = damage_->detach_threshold(model_, e);
-  const Detachment detachment = detach_damaged_elements(model_, threshold, detached_);
+  if (edges_.neighbor.size() != model_.conn.size())
+    edges_ = build_edge_adjacency(model_.conn, "fracture");
+  const Detachment detachment = detach_damaged_elements(model_, threshold, detached_, edges_);
   if (detachment.detached == 0) return;
   stats_.detached_elements += detachment.detached;
   state_.start_out_of_balance = true;

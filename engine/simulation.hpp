@@ -17,6 +17,7 @@
 #include "engine/damage/fragment_restraint.hpp"
 #include "engine/energy_account.hpp"
 #include "engine/loading/boundary_conditions.hpp"
+#include "engine/model/edge_adjacency.hpp"
 #include "engine/model/model.hpp"
 #include "engine/output/run_outputs.hpp"
 #include "engine/run_stats.hpp"
@@ -190,6 +191,7 @@ class Simulation {
   double attempt_time_ = 0.0;      // time at the end of the step being attempted
   FragmentRestraint fragments_;    // loose blocks held in steps without inertia
   bool loose_parts_held_ = false;  // fragments_ holds parts the attempt's cascade cut loose
+  EdgeAdjacency edges_;            // of model_.conn, kept through detachments
 
   EnergyAccount energy_;               // work and losses beside the state's own energy
   std::vector<double> damage_before_;  // per element, before a damage pass

@@ -34,6 +34,22 @@ TEST(EdgeAdjacency, RejectsNonManifoldEdges) {
   EXPECT_THROW(build_edge_adjacency(fan, "fan"), InputError);
 }
 
+TEST(EdgeAdjacency, DroppingSplitEdgesGivesTheAdjacencyOfTheSplitMesh) {
+  // Cut edge 1-4: nodes 1 and 4 split, and the kept adjacency is exactly what the sort finds
+  // on the new connectivity (elements 0 and 3 no longer neighbours, the rest unchanged).
+  EdgeAdjacency kept = build_edge_adjacency(kStrip, "strip");
+  std::vector<std::uint8_t> intact(kStrip.size(), 1);
+  intact[3 * 0 + 1] = 0;
+  intact[3 * 3 + 2] = 0;
+  const BlockTopology topo = form_blocks(kStrip, 6, kept, intact);
+  drop_split_edges(topo.conn, kept);
+  const EdgeAdjacency rebuilt = build_edge_adjacency(topo.conn, "split strip");
+  EXPECT_EQ(kept.neighbor, rebuilt.neighbor);
+  EXPECT_EQ(kept.neighbor_edge, rebuilt.neighbor_edge);
+  EXPECT_EQ(kept.neighbor[3 * 0 + 1], -1);
+  EXPECT_EQ(kept.neighbor[3 * 0 + 2], 1);
+}
+
 TEST(BlockTopology, IntactMeshIsOneBlockWithoutSplits) {
   const EdgeAdjacency adj = build_edge_adjacency(kStrip, "strip");
   const std::vector<std::uint8_t> intact(kStrip.size(), 1);

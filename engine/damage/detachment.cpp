@@ -18,6 +18,12 @@ void follow_split_nodes(std::span<const std::int32_t> node_origin, std::vector<d
 
 Detachment detach_damaged_elements(Model& model, std::span<const double> threshold,
                                    std::vector<std::uint8_t>& detached) {
+  EdgeAdjacency adjacency = build_edge_adjacency(model.conn, "fracture");
+  return detach_damaged_elements(model, threshold, detached, adjacency);
+}
+
+Detachment detach_damaged_elements(Model& model, std::span<const double> threshold,
+                                   std::vector<std::uint8_t>& detached, EdgeAdjacency& adjacency) {
   Detachment result;
   const std::int32_t num_elements = model.num_elements();
   detached.resize(static_cast<std::size_t>(num_elements), 0);
@@ -29,7 +35,6 @@ Detachment detach_damaged_elements(Model& model, std::span<const double> thresho
   if (result.detached == 0) return result;
 
   // An edge binds its two elements while neither is detached.
-  const EdgeAdjacency adjacency = build_edge_adjacency(model.conn, "fracture");
   std::vector<std::uint8_t> intact(3 * static_cast<std::size_t>(num_elements), 0);
   for (std::int32_t e = 0; e < num_elements; ++e)
     for (int k = 0; k < 3; ++k) {
@@ -63,6 +68,7 @@ Detachment detach_damaged_elements(Model& model, std::span<const double> thresho
   }
 
   model.conn = std::move(topology.conn);
+  drop_split_edges(model.conn, adjacency);
   model.element_block = std::move(topology.element_block);
   model.num_blocks = topology.num_blocks;
   follow_split_nodes(topology.node_origin, model.X);

@@ -6,6 +6,7 @@
 #include <span>
 #include <vector>
 
+#include "engine/model/edge_adjacency.hpp"
 #include "engine/model/model.hpp"
 
 namespace rockdd {
@@ -24,6 +25,11 @@ struct Detachment {
 /// Named curves and points follow too. Deterministic.
 Detachment detach_damaged_elements(Model& model, std::span<const double> threshold,
                                    std::vector<std::uint8_t>& detached);
+
+/// The same with the edge adjacency of model.conn given, and kept: on return it is the
+/// adjacency of the split connectivity (drop_split_edges).
+Detachment detach_damaged_elements(Model& model, std::span<const double> threshold,
+                                   std::vector<std::uint8_t>& detached, EdgeAdjacency& adjacency);
 
 /// field_new[n] = field[origin[n]] for a 2-per-node field.
 void follow_split_nodes(std::span<const std::int32_t> node_origin, std::vector<double>& field);

@@ -57,6 +57,23 @@ EdgeAdjacency build_edge_adjacency(std::span<const std::int32_t> conn, const cha
   return adj;
 }
 
+void drop_split_edges(std::span<const std::int32_t> conn, EdgeAdjacency& adjacency) {
+  const std::size_t num_slots = conn.size();
+  for (std::size_t s = 0; s < num_slots; ++s) {
+    const std::int32_t other = adjacency.neighbor[s];
+    if (other < 0) continue;
+    const std::size_t e = s / 3, k = s % 3;
+    const std::size_t j = static_cast<std::size_t>(adjacency.neighbor_edge[s]);
+    const auto o = static_cast<std::size_t>(other);
+    // The same edge seen from the other side runs the other way round.
+    if (conn[3 * o + j] == conn[3 * e + (k + 1) % 3] &&
+        conn[3 * o + (j + 1) % 3] == conn[3 * e + k])
+      continue;
+    adjacency.neighbor[s] = -1;
+    adjacency.neighbor_edge[s] = -1;
+  }
+}
+
 NodeIncidence build_node_incidence(std::span<const std::int32_t> conn, std::int32_t num_nodes) {
   NodeIncidence inc;
   inc.offset.assign(static_cast<std::size_t>(num_nodes) + 1, 0);

@@ -17,6 +17,11 @@ struct EdgeAdjacency {
 /// edge is shared by more than two elements (a non-manifold mesh).
 EdgeAdjacency build_edge_adjacency(std::span<const std::int32_t> conn, const char* source);
 
+/// After nodes split (elements keep their numbers and corners, some corners become copies):
+/// forgets the neighbours that no longer share both nodes of the edge. What remains is what
+/// build_edge_adjacency gives for the new connectivity, without its sort.
+void drop_split_edges(std::span<const std::int32_t> conn, EdgeAdjacency& adjacency);
+
 /// Elements incident to each node, as a compressed list: elements of node n are
 /// element[offset[n] .. offset[n+1]), in increasing element order.
 struct NodeIncidence {
