@@ -63,7 +63,7 @@ void drop_split_edges(std::span<const std::int32_t> conn, EdgeAdjacency& adjacen
     const std::int32_t other = adjacency.neighbor[s];
     if (other < 0) continue;
     const std::size_t e = s / 3, k = s % 3;
-    const std::size_t j = static_cast<std::size_t>(adjacency.neighbor_edge[s]);
+    const auto j = static_cast<std::size_t>(static_cast<std::uint8_t>(adjacency.neighbor_edge[s]));
     const auto o = static_cast<std::size_t>(other);
     // The same edge seen from the other side runs the other way round.
     if (conn[3 * o + j] == conn[3 * e + (k + 1) % 3] &&
