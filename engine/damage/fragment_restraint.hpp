@@ -6,9 +6,10 @@
 // against 1e-6 x 50 GPa x 1 m / 3 = 1.7e4 N/m of spring), so K is singular or nearly so
 // whenever those contacts are open. Each node of such a block gets a spring to where the step
 // started, of a small fraction of the rock's stiffness (the force is the spring times the
-// step's increment). It acts on every node, not only on the block's rigid modes, and also on
-// blocks that closed contacts hold; docs/convergence.md measures what that still costs (the
-// compression peak moves by up to 7 % at 0.1x the default).
+// step's increment). It acts on every node, also on blocks that closed contacts hold (so that
+// contacts can still move them); docs/convergence.md measures that the compression and disk
+// peaks do not move with it at 0.1x and 10x. A part that a damage cascade cuts loose inside a
+// step gets instead a statically determinate support on its free rigid modes only.
 #include <cstdint>
 #include <span>
 #include <vector>
