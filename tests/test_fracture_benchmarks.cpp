@@ -201,6 +201,100 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
   }
 }
 
+/// The platen force and the largest principal stress of the elastic flattened disk
+/// (data/verification/halved_disk.geo) pressed by `travel` (m), cut along the loaded diameter
+/// by a frictionless joint or not.
+struct PressedDisk {
+  double force = 0.0;       // |top.fy| (N)
+  double largest_s1 = 0.0;  // Pa
+  double rim_s1 = 0.0;      // largest s1 within 0.2 R of the horizontal diameter, r > 0.8 R
+  double largest_x = 0.0;   // reference centroid of the element with the largest s1 (m)
+  int above_strength = 0;   // elements with s1 > 2 MPa
+};
+
+PressedDisk press_disk(bool cut, double travel) {
+  std::string scene = R"(
+[scene]
+name = "halved-disk"
+analysis = "static"
+plane = "stress"
+[time]
+steps = 1
+[mesh]
+geo = "halved_disk.geo"
+[[material]]
+body = "*"
+density = 2600.0
+young = 20e9
+poisson = 0.2
+[[boundary]]
+on = "bottom_flat"
+fix = ["y"]
+[[boundary]]
+on = "top_flat"
+velocity_y = )" + std::to_string(-travel) +
+                      R"(
+[[probe]]
+name = "top"
+on = "top_flat"
+fields = ["fy"]
+[output]
+every = 0
+)";
+  // Intact: x held at the flats' midpoints, as in data/; cut: each half at its own.
+  scene += cut ? "[[joint]]\nbetween = [\"left\", \"right\"]\nfriction_angle = 0.0\n"
+                 "[[boundary]]\non = \"bottom_left\"\nfix = [\"x\"]\n"
+                 "[[boundary]]\non = \"bottom_right\"\nfix = [\"x\"]\n"
+               : "[[boundary]]\non = \"bottom\"\nfix = [\"x\"]\n"
+                 "[[boundary]]\non = \"top\"\nfix = [\"x\"]\n";
+  const auto run = test::run_scene_text(
+      scene, {}, 1,
+      {{"halved_disk.geo", test::read_text(test::data_file("verification/halved_disk.geo"))}});
+  EXPECT_TRUE(run.result.ok) << run.result.reason;
+  PressedDisk disk;
+  disk.force = std::abs(run.history.at("top.fy").back());
+  const Model& model = run.model;
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+    const double* s = &model.stress[3 * static_cast<std::size_t>(e)];
+    const double s1 = 0.5 * (s[0] + s[1]) + std::hypot(0.5 * (s[0] - s[1]), s[2]);
+    const auto [x, y] = reference_centroid(model, e);
+    if (s1 > disk.largest_s1) {
+      disk.largest_s1 = s1;
+      disk.largest_x = x;
+    }
+    if (std::hypot(x, y) > 0.8 * kRadius && std::abs(y) < 0.2 * kRadius)
+      disk.rim_s1 = std::max(disk.rim_s1, s1);
+    disk.above_strength += s1 > 2e6;
+  }
+  return disk;
+}
+
+TEST(BrazilianDisk, HalvesCutAlongTheDiameterStayOverstressedAtThePeakTravel) {
+  // Why the displacement-controlled disk cracks again after its main crack (issue 11 asks
+  // for >= 80 % of the damage within 0.2 R together with a > 90 % load drop). At the platen
+  // travel of the split step (22.2 um, data/brazilian_disk_displacement.toml), the intact
+  // elastic disk peaks at ft at its centre: s1 = 2 MPa within 5 % (Huang et al.'s load, eq.
+  // 15), at |x| < 0.1 R. Cut along the loaded diameter (a frictionless joint, the crack made
+  // before loading), each half is still pressed between its half-flats, like a column loaded
+  // off its centroid: it keeps 70-90 % of the intact force and its largest s1 exceeds 1.5 ft,
+  // away from the cut (|x| > 0.2 R), with the rim at mid-height above ft too. So at held
+  // platens the halves must crack again before the load can fall by 90 %; a crack along the
+  // diameter alone cannot drop it. Measured: 169.6 kN intact, 135.1 kN cut (80 %); s1 2.00
+  // MPa at the centre intact, 3.25 MPa (1.6 ft) cut, at (-10.8, 22.3) mm, by the rim beside
+  // the top flat; rim at mid-height 2.15 MPa; 218 elements above ft.
+  constexpr double kTravel = 22.2e-6, kStrength = 2e6;
+  const PressedDisk intact = press_disk(false, kTravel);
+  const PressedDisk cut = press_disk(true, kTravel);
+  EXPECT_NEAR(intact.largest_s1, kStrength, 0.05 * kStrength);
+  EXPECT_LT(std::abs(intact.largest_x), 0.1 * kRadius);
+  EXPECT_GT(cut.force, 0.7 * intact.force);
+  EXPECT_LT(cut.force, 0.9 * intact.force);
+  EXPECT_GT(cut.largest_s1, 1.5 * kStrength);
+  EXPECT_GT(std::abs(cut.largest_x), 0.2 * kRadius);
+  EXPECT_GT(cut.rim_s1, kStrength);
+  EXPECT_GT(cut.above_strength, 100);
+}
+
 TEST(BrazilianDisk, DynamicSplitClosesItsEnergyBalance) {
   // The same disk with inertia (issue 11): platen at 0.1 m/s, dt = 0.1 us, to a 95 % load
   // drop. It runs through the split, the halves fly apart faster than the platen moves (the
