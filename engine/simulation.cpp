@@ -23,6 +23,7 @@
 #include "engine/output/probes.hpp"
 #include "engine/process_clock.hpp"
 #include "engine/time/rotation_correction.hpp"
+#include "engine/time/snap_back.hpp"
 #include "kernels/damage_law.hpp"
 
 namespace rockdd {
@@ -77,13 +78,17 @@ std::filesystem::path run_folder(const Scene& scene, const RunOptions& options) 
 }
 
 Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> mesh_slot)
-    : scene_(std::move(scene)), model_(std::move(model)), mesh_slot_(std::move(mesh_slot)) {
+    : scene_(std::move(scene)),
+      analysis_(scene_.analysis),
+      integrator_(scene_.time.integrator),
+      model_(std::move(model)),
+      mesh_slot_(std::move(mesh_slot)) {
   ScopedTimer timer(setup_timers_.other);
   // Blocks that move turn: their strain is measured in co-rotated frames. A static analysis
   // restrains every block and solves once, small strain (f_int = K u exactly).
-  corotational_ = scene_.analysis != Analysis::static_;
+  corotational_ = analysis_ != Analysis::static_;
   bc_ = build_boundary_conditions(scene_, model_);
-  if (scene_.analysis == Analysis::static_) check_static_restraint(scene_, model_, bc_);
+  if (analysis_ == Analysis::static_) check_static_restraint(scene_, model_, bc_);
   reference_loads_ = build_reference_loads(scene_, model_);
   probes_ = std::make_unique<Probes>(scene_, model_);
 
@@ -91,7 +96,7 @@ Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> me
     ScopedTimer layout_timer(timers_.layout);
     coloring_ = color_elements(model_.conn, model_.num_nodes());
   }
-  if (!scene_.joints.empty()) contact_ = std::make_unique<ContactStage>(scene_, model_);
+  if (!scene_.joints.empty()) contact_ = std::make_unique<ContactStage>(scene_, model_, analysis_);
   if (!model_.tensile_strength.empty()) {
     damage_ = std::make_unique<DamageStage>(scene_, model_);
     committed_damage_ = model_.damage;
@@ -233,9 +238,10 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
 
 bool Simulation::attempt_step(long step, int retries, double dt, double load_factor,
                               StepControl& control) {
-  const InertiaTerms inertia = inertia_terms(scene_.analysis, scene_.time.integrator, dt);
+  const InertiaTerms inertia = inertia_terms(analysis_, integrator_, dt);
   state_.load_factor = load_factor;
   const std::size_t num_dofs = model_.X.size();
+  inertia_called_for_ = false;
   if (damage_) {
     attempt_first_damage_.reset();
     energy_.begin_attempt();
@@ -254,7 +260,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     // Each step starts from a freshly assembled matrix: folded changes do not accumulate
     // round-off from step to step.
     if (values_incremental_) factorized_mass_coefficient_ = -1.0;
-    if (scene_.analysis == Analysis::dynamic) {
+    if (analysis_ == Analysis::dynamic) {
       ScopedTimer timer(timers_.damage);
       state_.committed_strain.resize(model_.strain.size());
       state_.committed_stress.resize(model_.stress.size());
@@ -270,7 +276,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
       changed = contact_->detect(state_.positions);
     }
     if (changed) rebuild_layout();
-    if (scene_.analysis != Analysis::dynamic) contact_->set_force_scale(element_force_scale());
+    if (analysis_ != Analysis::dynamic) contact_->set_force_scale(element_force_scale());
   }
   // Co-rotation: the stiffness follows the elements' frames once any has turned by more than
   // kFrameTolerance since K was assembled (the internal force always uses the exact frames).
@@ -302,7 +308,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
   // re-solve (damage that grew without new onsets), or a split node no longer passes the
   // force it carried between the elements around it. The first solve re-settles that along
   // with the step's boundary increment; it is snap-back too, measured from the committed state.
-  const bool count_snap_back = scene_.analysis != Analysis::dynamic;
+  const bool count_snap_back = analysis_ != Analysis::dynamic;
   const bool settle_start = count_snap_back && damage_ && state_.start_out_of_balance;
   double settled_energy = 0.0;  // stored energy just after the last pass dropped the moduli
   if (settle_start) {
@@ -343,6 +349,12 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     // The last pass's modulus drop is not re-solved: the next step starts from it.
     state_.end_out_of_balance = change.grown > 0;
     if (change.newly_damaged == 0) break;
+    // With snap_back = "dynamic" the cascade goes on with inertia from here, in the steps
+    // after this one.
+    if (cascade_calls_for_inertia(scene_.fracture, analysis_, pass)) {
+      inertia_called_for_ = true;
+      break;
+    }
     if (pass >= scene_.fracture.max_damage_passes) {
       ++stats_.damage_limit_hits;
       break;
@@ -413,8 +425,7 @@ DamageChange Simulation::evaluate_damage() {
     // there. A dynamic step instead integrates the whole step with the new moduli, from the
     // committed state: that is where its modulus drop takes the energy.
     energy_.attempt_damage += released_by_damage(
-        damage_before_,
-        scene_.analysis == Analysis::dynamic ? state_.committed_strain : model_.strain);
+        damage_before_, analysis_ == Analysis::dynamic ? state_.committed_strain : model_.strain);
   }
   if (change.newly_damaged > 0 && !first_damage_ && !attempt_first_damage_) {
     FirstDamage first{stats_.steps + 1, attempt_time_, 0, 0.0, 0.0, 0.0};
@@ -437,8 +448,8 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
                                       StepControl& control, bool factor_current) {
   const std::size_t num_dofs = model_.X.size();
   // The open-close iteration (a single solve without contacts): assume states, solve, check.
-  const int limit = scene_.analysis == Analysis::dynamic ? kMaxOpenCloseIterations
-                                                         : kMaxOpenCloseIterationsWithoutInertia;
+  const int limit = analysis_ == Analysis::dynamic ? kMaxOpenCloseIterations
+                                                   : kMaxOpenCloseIterationsWithoutInertia;
   int iterations = 0;
   // factor_current: the factor already holds this iteration's system (springs switched by
   // updates in the last iteration, or moduli folded in by the last damage pass).
@@ -523,7 +534,7 @@ bool Simulation::fold_modulus_change(double mass_coefficient) {
 }
 
 bool Simulation::hold_parts_cut_loose() {
-  if (scene_.analysis == Analysis::dynamic) return false;  // inertia holds them
+  if (analysis_ == Analysis::dynamic) return false;  // inertia holds them
   const bool broke = std::any_of(
       state_.changed_elements.begin(), state_.changed_elements.end(),
       [&](std::int32_t e) { return damage_before_[e] < 1.0 && model_.damage[e] >= 1.0; });
@@ -587,8 +598,8 @@ void Simulation::solve_system() {
 void Simulation::commit_step(double dt) {
   const std::size_t num_dofs = model_.X.size();
   energy_.integrator +=
-      update_velocity(scene_.analysis, scene_.time.integrator, dt, state_.du, bc_.prescribed,
-                      bc_.velocity, model_.node_mass, model_.v, state_.acceleration);
+      update_velocity(analysis_, integrator_, dt, state_.du, bc_.prescribed, bc_.velocity,
+                      model_.node_mass, model_.v, state_.acceleration);
   if (corotational_) {
     // Only blocks that nothing holds turn exactly; the others stay where the solve balanced
     // them against their constraints and contacts.
@@ -621,7 +632,7 @@ void Simulation::commit_step(double dt) {
   // The constraints' force on the body, and the work of all external forces (trapezoidal).
   // Without inertia a damage cascade runs at fixed boundaries: the step's boundary work is
   // done at the first solve's reactions (record_first_reaction), not at the fallen ones.
-  const bool first_reaction = damage_ && scene_.analysis != Analysis::dynamic;
+  const bool first_reaction = damage_ && analysis_ != Analysis::dynamic;
   double work = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) {
     state_.reaction[d] = constraint_force(bc_.prescribed[d], state_.f_int[d], state_.f_contact[d],
@@ -657,7 +668,7 @@ void Simulation::detach_fractured_elements() {
   // Without inertia a piece that fracture cut loose is held by nothing but the weak fragment
   // restraint (built below; enough for lone elements): the specimen has failed, and a static
   // analysis cannot follow it.
-  if (scene_.analysis == Analysis::static_)
+  if (analysis_ == Analysis::static_)
     if (const std::optional<FreeBlock> free = find_free_block(model_, bc_, 2)) {
       char buf[320];
       std::snprintf(buf, sizeof buf,
@@ -674,16 +685,44 @@ void Simulation::detach_fractured_elements() {
   probes->carry_state_from(*probes_);
   probes_ = std::move(probes);
   coloring_ = color_elements(model_.conn, model_.num_nodes());
-  if (scene_.analysis != Analysis::dynamic)
+  if (analysis_ != Analysis::dynamic)
     fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness,
                                    scene_.fracture.loose_part_support);
   loose_parts_held_ = false;
-  if (scene_.analysis != Analysis::dynamic && corotational_) turn_loose_block_frames();
-  auto contact = std::make_unique<ContactStage>(scene_, model_);
+  if (analysis_ != Analysis::dynamic && corotational_) turn_loose_block_frames();
+  auto contact = std::make_unique<ContactStage>(scene_, model_, analysis_);
   if (contact_) contact->carry_contacts_from(*contact_);
   contact_ = std::move(contact);
   rebuild_layout();
   recompute_committed_forces();
+}
+
+void Simulation::follow_cascade_with_inertia(long step, double time, StepControl& control) {
+  inertia_called_for_ = false;
+  const double dt = snap_back_time_step(scene_, model_);
+  analysis_ = Analysis::dynamic;
+  integrator_ = Integrator::newmark;  // neither damps nor adds: the release becomes motion
+  control.restart_at(dt);
+  inertia_switch_ = InertiaSwitch{step, time, dt};
+  // Inertia holds loose blocks now; contacts lose the sliding springs of steps without it.
+  fragments_ = FragmentRestraint();
+  loose_parts_held_ = false;
+  std::fill(state_.restraint_force.begin(), state_.restraint_force.end(), 0.0);
+  if (contact_) {
+    auto contact = std::make_unique<ContactStage>(scene_, model_, analysis_);
+    contact->carry_contacts_from(*contact_);
+    contact_ = std::move(contact);
+    rebuild_layout();
+  }
+  factorized_mass_coefficient_ = -1.0;
+  // Newmark starts from the acceleration that balances the committed state, a0 = M^-1 (f_ext -
+  // f_int - f_contact): the last pass's modulus drop left it out of balance, and starting
+  // from a0 = 0 would misplace the first step's velocity by that force.
+  for (std::size_t d = 0; d < model_.X.size(); ++d)
+    state_.acceleration[d] = bc_.prescribed[d]
+                                 ? 0.0
+                                 : (state_.f_ext_old[d] - state_.f_int[d] - state_.f_contact[d]) /
+                                       model_.node_mass[d / 2];
 }
 
 void Simulation::turn_loose_block_frames() {
@@ -814,7 +853,7 @@ RunResult Simulation::run(const RunOptions& options) {
                                            probes_->has_line_probes(), options.write_frames);
 
   // Step 0: the initial state.
-  const double initial_factor = load_factor(scene_.analysis, 0.0, end_time);
+  const double initial_factor = load_factor(analysis_, 0.0, end_time);
   for (std::size_t d = 0; d < model_.X.size(); ++d)
     state_.f_ext_old[d] = initial_factor * reference_loads_[d];
   compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, state_.f_int,
@@ -823,7 +862,7 @@ RunResult Simulation::run(const RunOptions& options) {
   // starting from a0 = 0 would leave a velocity error of g dt / 2 for the whole run.
   for (std::size_t d = 0; d < model_.X.size(); ++d)
     state_.acceleration[d] =
-        bc_.prescribed[d] || scene_.analysis != Analysis::dynamic
+        bc_.prescribed[d] || analysis_ != Analysis::dynamic
             ? 0.0
             : (state_.f_ext_old[d] - state_.f_int[d]) / model_.node_mass[d / 2];
   std::vector<double> row;
@@ -863,8 +902,8 @@ RunResult Simulation::run(const RunOptions& options) {
       const long step = stats_.steps + 1;
       double dt = std::min(control.dt(), end_time - t);
       attempt_time_ = t + dt;
-      for (int retries = 0; !attempt_step(step, retries, dt,
-                                          load_factor(scene_.analysis, t + dt, end_time), control);
+      for (int retries = 0;
+           !attempt_step(step, retries, dt, load_factor(analysis_, t + dt, end_time), control);
            ++retries) {
         ++stats_.redone_steps;
         dt = std::min(control.dt(), end_time - t);
@@ -887,6 +926,7 @@ RunResult Simulation::run(const RunOptions& options) {
       t += dt;
       stats_.steps = step;
       control.accept(true);
+      if (inertia_called_for_ && !fracture_failure) follow_cascade_with_inertia(step, t, control);
       const StepReport report{step, t, dt, end_time, planned};
       if (!fracture_failure && options.keep_going && !options.keep_going(report, model_))
         stopped_by_caller = true;
@@ -961,7 +1001,7 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
   s["rockdd_version"] = ROCKDD_VERSION;
   s["threads"] = threads;
   s["wall_seconds"] = wall_seconds;
-  s["analysis"] = analysis_name(scene_.analysis);
+  s["analysis"] = analysis_name(scene_.analysis);  // as the scene gives it
   stats_.write(s);
   s["open_close_shear_swings_settled"] = contact_ ? contact_->shear_swings_settled() : 0;
   s["open_close_normal_swings_settled"] = contact_ ? contact_->normal_swings_settled() : 0;
@@ -986,6 +1026,11 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
                            {"spread", first_damage_->spread}};
     else
       s["first_damage"] = nullptr;
+    if (scene_.fracture.snap_back == FractureSpec::SnapBack::dynamic)
+      s["snap_back_inertia"] = inertia_switch_ ? nlohmann::json{{"step", inertia_switch_->step},
+                                                                {"time", inertia_switch_->time},
+                                                                {"dt", inertia_switch_->dt}}
+                                               : nlohmann::json(nullptr);
   }
   {
     // The balance of the last committed state, split by where the work went; what is left

@@ -147,6 +147,10 @@ class Simulation {
   void turn_loose_block_frames();
   /// After nodes split: loads and constraint forces of the committed state on the new nodes.
   void recompute_committed_forces();
+  /// fracture.snap_back = "dynamic": after the step whose damage cascade called for inertia,
+  /// the run goes on as a dynamic analysis (Newmark, snap_back_time_step) from the committed
+  /// state, which the last damage pass left out of balance.
+  void follow_cascade_with_inertia(long step, double time, StepControl& control);
   /// Force scale of the committed state (N): the largest element edge force, load or reaction.
   double element_force_scale() const;
   EnergyBalance energy() const;
@@ -157,6 +161,8 @@ class Simulation {
   nlohmann::json timers_summary(double wall_seconds, const std::optional<SetupReport>& setup) const;
 
   Scene scene_;
+  Analysis analysis_;      // of the steps: the scene's, until a cascade calls for inertia
+  Integrator integrator_;  // of the steps: Newmark once a snap-back is followed with inertia
   Model model_;
   BoundaryConditions bc_;
   std::vector<double> reference_loads_;
@@ -188,10 +194,18 @@ class Simulation {
     double spread = 0.0;      // largest distance of their centroids from that mean
   };
   std::optional<FirstDamage> first_damage_, attempt_first_damage_;
-  double attempt_time_ = 0.0;      // time at the end of the step being attempted
-  FragmentRestraint fragments_;    // loose blocks held in steps without inertia
-  bool loose_parts_held_ = false;  // fragments_ holds parts the attempt's cascade cut loose
-  EdgeAdjacency edges_;            // of model_.conn, kept through detachments
+  double attempt_time_ = 0.0;        // time at the end of the step being attempted
+  FragmentRestraint fragments_;      // loose blocks held in steps without inertia
+  bool loose_parts_held_ = false;    // fragments_ holds parts the attempt's cascade cut loose
+  bool inertia_called_for_ = false;  // the attempt's cascade calls for inertia (snap_back)
+  /// Where a quasi-static run went on with inertia (fracture.snap_back = "dynamic").
+  struct InertiaSwitch {
+    long step = 0;  // the last quasi-static step
+    double time = 0.0;
+    double dt = 0.0;  // of the dynamic steps after it
+  };
+  std::optional<InertiaSwitch> inertia_switch_;
+  EdgeAdjacency edges_;  // of model_.conn, kept through detachments
 
   EnergyAccount energy_;               // work and losses beside the state's own energy
   std::vector<double> damage_before_;  // per element, before a damage pass

@@ -110,6 +110,9 @@ struct DiskSplit {
   double energy_gap = 0.0;
   double created = 0.0;     // energy re-solves gained instead of released, over the work
   double integrator = 0.0;  // damped by the time integrator, over the work
+  long first_damage_step = 0;
+  long inertia_step = 0;  // summary snap_back_inertia: the last quasi-static step, its dt
+  double inertia_dt = 0.0;
 };
 
 DiskSplit run_displacement_disk(const std::vector<std::string>& overrides) {
@@ -133,6 +136,13 @@ DiskSplit run_displacement_disk(const std::vector<std::string>& overrides) {
   split.created =
       run.result.summary.at("energy").at("created_by_resolves").get<double>() / work.back();
   split.integrator = run.history.at("energy.integrator").back() / work.back();
+  const auto& summary = run.result.summary;
+  if (summary.at("first_damage").is_object())
+    split.first_damage_step = summary.at("first_damage").at("step").get<long>();
+  if (summary.contains("snap_back_inertia") && summary.at("snap_back_inertia").is_object()) {
+    split.inertia_step = summary.at("snap_back_inertia").at("step").get<long>();
+    split.inertia_dt = summary.at("snap_back_inertia").at("dt").get<double>();
+  }
   const Model& model = run.model;
   std::vector<double> x_sum(static_cast<std::size_t>(model.num_blocks), 0.0);
   std::vector<std::int32_t> count(static_cast<std::size_t>(model.num_blocks), 0);
@@ -199,6 +209,37 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
     // negative term would be energy the scheme created hiding in it. Measured: 0 J.
     EXPECT_LT(split.created, 1e-3);
   }
+}
+
+TEST(BrazilianDisk, SnapBackFollowedWithInertiaSplitsAlongTheDiameter) {
+  // fracture.snap_back = "dynamic" (issue 11's "dynamic resolution of a snap-back"): the
+  // displacement-controlled disk is loaded quasi-statically; in the step where its damage
+  // cascade starts (a re-solve after the first damage event finds more), the run goes on with
+  // inertia (Newmark) from that state at a quarter of the shortest wave transit time of an
+  // element, h_min / sqrt(E / (rho (1 - nu^2))) / 4 in plane stress, here 5.2e-8 s; it stops
+  // at a 95 % load drop. Required: the switch no earlier than the first damage, at that dt;
+  // the peak within 5 % of Huang's 2.118 MPa; the load falls by more than 95 %; two halves,
+  // one each side of the diameter; >= 80 % of the damaged elements within 0.2 R of it; work =
+  // strain + kinetic + dissipated + snap-back + integrator to 2 % at every step, Newmark
+  // damping nothing. Measured: first damage in step 221 (no cascade), switch after step 223,
+  // peak 2.162 MPa (+2.1 %, the dynamic overshoot; 2.154 MPa held), load to 1.5 %,
+  // halves of 1,385 and 1,289 elements, 86.6 % of 493 damaged elements near the diameter,
+  // unaccounted -0.6 %. Not a cure for issue 11's 80 %: at dt / 2 the same stop finds 78 %,
+  // at h / sqrt(2) and with snap_back_dt x 1/4 .. x 2 the load has fallen 95 % before the
+  // halves part (84-96 %, one block), and run on, the halves, still held by the flats, shatter
+  // with the released energy (35 % near the diameter 60 us after the split;
+  // docs/method-choices.md, "Damage events").
+  const DiskSplit split =
+      run_displacement_disk({"fracture.snap_back=dynamic", "time.stop_at_softening=0.95"});
+  EXPECT_GE(split.inertia_step, split.first_damage_step);
+  EXPECT_NEAR(split.inertia_dt, 5.246e-8, 0.01 * 5.246e-8);
+  EXPECT_NEAR(split.peak_strength, 2.118e6, 0.05 * 2.118e6);
+  EXPECT_LT(split.final_over_peak, 0.05);
+  ASSERT_EQ(split.large_block_x.size(), 2u);
+  EXPECT_LT(split.large_block_x[0] * split.large_block_x[1], 0.0) << "both on one side";
+  EXPECT_GE(split.near_diameter, 0.80) << split.damaged << " damaged";
+  EXPECT_LT(split.energy_gap, 0.02);
+  EXPECT_LT(std::abs(split.integrator), 1e-6);
 }
 
 /// The platen force and the largest principal stress of the elastic flattened disk

@@ -160,6 +160,8 @@ TEST(SceneReader, ReadsEveryFieldOfTheExample) {
   EXPECT_EQ(s.fracture.max_damage_passes, 500);
   EXPECT_DOUBLE_EQ(s.fracture.fragment_stiffness, 1e-6);
   EXPECT_DOUBLE_EQ(s.fracture.loose_part_support, 1.0);
+  EXPECT_EQ(s.fracture.snap_back, FractureSpec::SnapBack::held);
+  EXPECT_FALSE(s.fracture.snap_back_dt.has_value());
 
   // The example writes every key that has a default: nothing was chosen for it.
   EXPECT_TRUE(s.defaults.empty()) << s.defaults.front().first;
@@ -198,6 +200,7 @@ TEST(SceneReader, StaticSceneWithoutTimeRunsOneStepAndRecordsEveryDefault) {
       {"fracture.max_damage_passes", "500"},
       {"fracture.fragment_stiffness", "1e-06"},
       {"fracture.loose_part_support", "1"},
+      {"fracture.snap_back", "held"},
       {"output.dir", "out"},
       {"output.every", "100"},
       {"output.fields",

@@ -67,7 +67,7 @@ double step_slip(const Contact& c, std::span<const double> positions) {
 
 }  // namespace
 
-ContactStage::ContactStage(const Scene& scene, const Model& model) {
+ContactStage::ContactStage(const Scene& scene, const Model& model, Analysis analysis) {
   boundary_ = extract_block_boundary(model);
   const auto num_bodies = static_cast<std::int32_t>(model.sets.bodies.size());
   rules_.num_bodies = num_bodies;
@@ -153,7 +153,7 @@ ContactStage::ContactStage(const Scene& scene, const Model& model) {
   // Without inertia nothing but its own contacts holds a block tangentially, and friction as a
   // bare load would throw one that is held on one side only: a sliding contact keeps a
   // spring of a small fraction of ks (ContactParameters::sliding_stiffness).
-  if (scene.analysis != Analysis::dynamic) {
+  if (analysis != Analysis::dynamic) {
     parameters_.sliding_stiffness = kSlidingStiffnessFraction * parameters_.shear_stiffness;
     parameters_.forgive_unresisted_overlap = true;
   }

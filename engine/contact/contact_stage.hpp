@@ -77,8 +77,10 @@ struct ContactParameters {
 /// Contact detection, springs and states over a step.
 class ContactStage {
  public:
-  /// Boundary and rules from the model and the scene's joints; defaults for kn, ks.
-  ContactStage(const Scene& scene, const Model& model);
+  /// Boundary and rules from the model and the scene's joints; defaults for kn, ks; the
+  /// sliding springs and forgiven overlaps of steps without inertia unless `analysis` is
+  /// dynamic.
+  ContactStage(const Scene& scene, const Model& model, Analysis analysis);
 
   /// Finds the contacts at `positions`; keeps the state of pairs that persist. Returns true
   /// when the set of (vertex, a, b) triples changed (the pattern must be rebuilt).

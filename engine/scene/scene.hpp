@@ -132,6 +132,11 @@ struct FractureSpec {
                                      // in steps without inertia
   double loose_part_support = 1.0;   // x E0 t: the springs of the statically determinate support
                                      // of a part that a damage cascade cuts loose inside a step
+  /// How a quasi-static run follows a damage cascade: re-solved at held boundaries, or, from
+  /// the first cascade on, with inertia (Newmark) at snap_back_dt.
+  enum class SnapBack { held, dynamic };
+  SnapBack snap_back = SnapBack::held;
+  std::optional<double> snap_back_dt;  // s; default from the mesh's wave transit time
 };
 
 /// [solver]: how the linear systems are solved; changes round-off only (docs/benchmarks.md).

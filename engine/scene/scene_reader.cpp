@@ -55,7 +55,8 @@ Scene parse_scene(std::string_view text, const fs::path& file,
   check_softening_probe(root, scene);
   scene.fracture =
       read_fracture(root, std::any_of(scene.materials.begin(), scene.materials.end(),
-                                      [](const MaterialSpec& m) { return m.has_damage(); }));
+                                      [](const MaterialSpec& m) { return m.has_damage(); }),
+                    scene.analysis);
   scene.solver = read_solver(root);
   scene.output = read_output(root);
   scene.defaults = std::move(defaults);

@@ -165,9 +165,11 @@ void read_mesher_options(TableReader& table, MeshSpec& mesh) {
 /// silently do nothing. `what` says why ("a .msh is already meshed").
 void refuse_mesher_options(const TableReader& table, const std::string& source,
                            const std::string& why) {
-  for (const std::string& key : table.present({"algorithm", "smoothing"}))
-    table.fail(
-        key, "expected no " + table.key_path(key) + " with " + source + " (" + why + "), got one");
+  for (const std::string& key : table.present({"algorithm", "smoothing"})) {
+    std::string expected = "expected no " + table.key_path(key);
+    expected.append(" with ").append(source).append(" (").append(why).append("), got one");
+    table.fail(key, expected);
+  }
 }
 
 /// The key that sets a built-in shape's element count: what a message about it must name.
@@ -348,12 +350,12 @@ void check_softening_probe(TableReader& root, const Scene& scene) {
                                    "), got \"" + column + "\"");
 }
 
-FractureSpec read_fracture(TableReader& root, bool has_damage) {
+FractureSpec read_fracture(TableReader& root, bool has_damage, Analysis analysis) {
   // Defaults are listed only where they are used: in scenes whose materials can damage.
   if (!has_damage && !root.has("fracture")) return {};
   TableReader table = optional_table(root, "fracture");
-  table.allow_only(
-      {"damage_band", "max_damage_passes", "fragment_stiffness", "loose_part_support"});
+  table.allow_only({"damage_band", "max_damage_passes", "fragment_stiffness", "loose_part_support",
+                    "snap_back", "snap_back_dt"});
   FractureSpec fracture;
   fracture.damage_band = table.number_or("damage_band", fracture.damage_band, above(0));
   if (auto passes = table.integer("max_damage_passes", 1, 1000000)) {
@@ -365,6 +367,18 @@ FractureSpec read_fracture(TableReader& root, bool has_damage) {
                                                 between(0, false, 1, true));
   fracture.loose_part_support = table.number_or("loose_part_support", fracture.loose_part_support,
                                                 between(0, false, 1e6, true));
+  if (table.choice_or("snap_back", {"held", "dynamic"}, "held") == "dynamic") {
+    // A static analysis has no time to follow motion in; a dynamic one has inertia already.
+    if (analysis != Analysis::quasi_static)
+      table.fail("snap_back", std::string("expected \"held\" in a ") +
+                                  (analysis == Analysis::static_ ? "static" : "dynamic") +
+                                  " analysis (\"dynamic\" follows the damage cascades of a "
+                                  "quasi-static one with inertia), got \"dynamic\"");
+    fracture.snap_back = FractureSpec::SnapBack::dynamic;
+  }
+  if (table.has("snap_back_dt") && fracture.snap_back != FractureSpec::SnapBack::dynamic)
+    table.fail("snap_back_dt", "expected no snap_back_dt unless snap_back = \"dynamic\"");
+  fracture.snap_back_dt = table.number("snap_back_dt", above(0));
   return fracture;
 }
 

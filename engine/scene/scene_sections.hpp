@@ -21,7 +21,7 @@ MeshSpec read_mesh(TableReader& root, const std::filesystem::path& scene_dir);
 
 /// [fracture] (optional): the numerical devices of damage and fracture; their defaults are
 /// recorded only when `has_damage` (a material can damage).
-FractureSpec read_fracture(TableReader& root, bool has_damage);
+FractureSpec read_fracture(TableReader& root, bool has_damage, Analysis analysis);
 
 /// [output] (optional): folder, frame interval and VTU fields.
 SolverSpec read_solver(TableReader& root);

@@ -33,6 +33,14 @@ void StepControl::accept(bool easy) {
   }
 }
 
+void StepControl::restart_at(double dt) {
+  dt_ = dt;
+  dt_max_ = dt;
+  dt_min_ = dt * 1e-6;
+  easy_in_a_row_ = 0;
+  ++changes_;
+}
+
 bool StepControl::displacement_ok(double max_increment) const {
   return !max_displacement_ || max_increment <= *max_displacement_;
 }

@@ -17,6 +17,9 @@ class StepControl {
   void reject(long step, const std::string& why);
   /// Records a committed step; grows dt after 10 easy steps in a row.
   void accept(bool easy);
+  /// Goes on at `dt` (also the new largest; the smallest 1e-6 of it): a run that changes its
+  /// kind of analysis (fracture.snap_back = "dynamic").
+  void restart_at(double dt);
   /// True when a step's largest displacement increment is acceptable.
   bool displacement_ok(double max_increment) const;
   long changes() const { return changes_; }
