@@ -181,7 +181,7 @@ void BM_RebuildAfterDetachment(benchmark::State& state) {
     benchmark::DoNotOptimize(fragments.num_dofs());
   }
   report(state, c);
-  const char* names[7] = {"fields_ms",  "bc_loads_ms", "coloring_ms", "contact_ms",
+  const char* names[7] = {"fields_ms",    "bc_loads_ms", "coloring_ms", "contact_ms",
                           "fragments_ms", "layout_ms",   "analyze_ms"};
   for (int p = 0; p < 7; ++p)
     state.counters[names[p]] =
