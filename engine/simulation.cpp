@@ -326,26 +326,9 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     // Without inertia the boundaries move in the first solve only; the cascade after it runs
     // at fixed boundaries, so the step's work is done at the first solve's reactions.
     if (pass == 1 && count_snap_back) record_first_reaction();
-    if (count_snap_back && (pass > 1 || change.grown > 0 || settle_start)) {
-      const double stored = stored_energy();  // at this solve, before its modulus drop
-      if (pass > 1 || settle_start) {
-        // The work done between the two states: in the first solve, the boundaries' and the
-        // loads' over the step's increment; later, the loads' alone (the boundaries hold).
-        double work = 0.0;
-        for (std::size_t d = 0; d < num_dofs; ++d)
-          work += pass == 1 ? 0.5 *
-                                  (state_.f_ext_old[d] + state_.reaction_old[d] + state_.f_ext[d] +
-                                   state_.reaction_first[d]) *
-                                  state_.du[d]
-                            : state_.f_ext[d] * (state_.positions[d] - state_.positions_settled[d]);
-        const double friction =
-            contact_ ? contact_->friction_work_between(state_.positions_settled, state_.positions)
-                     : 0.0;
-        energy_.add_snap_back(settled_energy - stored + work - friction);
-      }
-      settled_energy = stored - (energy_.attempt_damage - released_before);
-      std::swap(state_.positions, state_.positions_settled);
-    }
+    if (count_snap_back)
+      settled_energy =
+          measure_snap_back(pass, settle_start, change, released_before, settled_energy);
     // The last pass's modulus drop is not re-solved: the next step starts from it.
     state_.end_out_of_balance = change.grown > 0;
     if (change.newly_damaged == 0) break;
@@ -360,18 +343,51 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
       break;
     }
     ++stats_.damage_iterations;
-    changed_elements(model_, damage_before_, state_.changed_elements);
-    const bool restraint_changed = hold_parts_cut_loose();
-    factor_current =
-        !restraint_changed && change.grown > 0 && fold_modulus_change(inertia.mass_coefficient);
-    prepare_system(inertia.mass_coefficient);  // nothing left to do once folded
-    // The next solve's internal force at u_trial under the new moduli: bitwise what a full
-    // recomputation gives (the same kernel per element, summed in the same order).
-    ScopedTimer timer(timers_.assembly);
-    refresh_element_forces(model_, state_.u_trial, state_.changed_elements,
-                           state_.trial_element_force, corotational_);
-    sum_element_forces(model_, coloring_, state_.trial_element_force, state_.f_int);
+    factor_current = prepare_next_pass(inertia.mass_coefficient, change.grown > 0);
   }
+  return increment_acceptable(step, control);
+}
+
+double Simulation::measure_snap_back(int pass, bool settle_start, const DamageChange& change,
+                                     double released_before, double settled_energy) {
+  if (!(pass > 1 || change.grown > 0 || settle_start)) return settled_energy;
+  const std::size_t num_dofs = model_.X.size();
+  const double stored = stored_energy();  // at this solve, before its modulus drop
+  if (pass > 1 || settle_start) {
+    // The work done between the two states: in the first solve, the boundaries' and the
+    // loads' over the step's increment; later, the loads' alone (the boundaries hold).
+    double work = 0.0;
+    for (std::size_t d = 0; d < num_dofs; ++d)
+      work += pass == 1 ? 0.5 *
+                              (state_.f_ext_old[d] + state_.reaction_old[d] + state_.f_ext[d] +
+                               state_.reaction_first[d]) *
+                              state_.du[d]
+                        : state_.f_ext[d] * (state_.positions[d] - state_.positions_settled[d]);
+    const double friction =
+        contact_ ? contact_->friction_work_between(state_.positions_settled, state_.positions)
+                 : 0.0;
+    energy_.add_snap_back(settled_energy - stored + work - friction);
+  }
+  std::swap(state_.positions, state_.positions_settled);
+  return stored - (energy_.attempt_damage - released_before);
+}
+
+bool Simulation::prepare_next_pass(double mass_coefficient, bool grown) {
+  changed_elements(model_, damage_before_, state_.changed_elements);
+  const bool restraint_changed = hold_parts_cut_loose();
+  const bool folded = !restraint_changed && grown && fold_modulus_change(mass_coefficient);
+  prepare_system(mass_coefficient);  // nothing left to do once folded
+  // The next solve's internal force at u_trial under the new moduli: bitwise what a full
+  // recomputation gives (the same kernel per element, summed in the same order).
+  ScopedTimer timer(timers_.assembly);
+  refresh_element_forces(model_, state_.u_trial, state_.changed_elements,
+                         state_.trial_element_force, corotational_);
+  sum_element_forces(model_, coloring_, state_.trial_element_force, state_.f_int);
+  return folded;
+}
+
+bool Simulation::increment_acceptable(long step, StepControl& control) {
+  const std::size_t num_dofs = model_.X.size();
   double largest = 0.0;
   for (std::size_t d = 0; d < num_dofs; ++d) largest = std::max(largest, std::abs(state_.du[d]));
   if (!control.displacement_ok(largest)) {

@@ -138,6 +138,20 @@ class Simulation {
   /// Energy the rock and its springs hold at the increment du (J): elements (from model_'s
   /// strain and stress), contacts and fragment restraint. Fills state_.positions with X + u + du.
   double stored_energy();
+  /// Without inertia, after damage pass `pass`: books the energy the rock gave up between the
+  /// last pass's modulus drop (stored energy `settled_energy`; the committed state when the
+  /// step starts out of balance, `settle_start`) and this solve, less the work done meanwhile,
+  /// as snap-back (docs/method-choices.md, "Energy balance"). Returns the stored energy just
+  /// after this pass's drop, where the next pass's snap-back starts.
+  double measure_snap_back(int pass, bool settle_start, const DamageChange& change,
+                           double released_before, double settled_energy);
+  /// After a damage pass that newly damaged elements: the restraint of parts it cut loose,
+  /// the factor (folded by updates when cheaper, or reassembled) and the trial internal force
+  /// under the new moduli. True when the factor already holds the next system.
+  bool prepare_next_pass(double mass_coefficient, bool grown);
+  /// The step's largest displacement increment within the scene's limit and the contact
+  /// search distance; otherwise the step is rejected (dt halved) and false returned.
+  bool increment_acceptable(long step, StepControl& control);
   /// Fills state_.reaction_first: the constraints' force at the first solve of the step.
   void record_first_reaction();
   /// Without inertia, after nodes split: the blocks no boundary holds take their current
