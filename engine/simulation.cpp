@@ -134,24 +134,45 @@ Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> me
   }
 }
 
-Simulation::~Simulation() = default;
+Simulation::~Simulation() {
+  try {
+    await_analysis();
+  } catch (...) {  // NOLINT(bugprone-empty-catch): a failed analysis no one will use
+  }
+}
 
 void Simulation::rebuild_layout() {
+  await_analysis();  // the solver's last analysis is replaced
   ScopedTimer timer(timers_.layout);
   std::vector<std::int32_t> conn = model_.conn;
   if (contact_) {
     const std::vector<std::int32_t> triples = contact_->triples();
     conn.insert(conn.end(), triples.begin(), triples.end());
   }
-  layout_ = build_stiffness_layout(conn, model_.num_nodes(), bc_.equation);
+  layout_ = build_sparsity_pattern(conn, model_.num_nodes(), bc_.equation);
+  // CHOLMOD's analysis needs the pattern alone: it runs beside the scatter map and the
+  // assembly (the same analysis whatever runs beside it), and the solver waits for it before
+  // it factorizes.
+  if (bc_.num_equations > 0) {
+    analysis_pending_ = true;
+    analysis_task_.run([this] {
+      analyze_layout();
+      mesh_slot_.reset();  // later layouts follow the contacts: computed each time, not stored
+    });
+  } else {
+    mesh_slot_.reset();
+  }
+  build_scatter_map(conn, bc_.equation, layout_);
   values_.assign(static_cast<std::size_t>(layout_.pattern.nnz()), 0.0);
   if (contact_) base_values_.assign(values_.size(), 0.0);
-  if (bc_.num_equations > 0) {
-    ScopedTimer analysis_timer(timers_.analysis);
-    analyze_layout();
-  }
-  mesh_slot_.reset();  // later layouts follow the contacts: computed each time, not stored
   factorized_mass_coefficient_ = -1.0;  // the values must be assembled into the new pattern
+}
+
+void Simulation::await_analysis() {
+  if (!analysis_pending_) return;
+  ScopedTimer timer(timers_.analysis);
+  analysis_pending_ = false;
+  analysis_task_.wait();  // rethrows what the analysis threw
 }
 
 void Simulation::analyze_layout() {
@@ -190,6 +211,7 @@ void Simulation::prepare_system(double mass_coefficient) {
   }
   factorized_mass_coefficient_ = mass_coefficient;
   if (contact_) return;  // factorized in every open-close iteration, with the springs
+  await_analysis();
   ScopedTimer timer(timers_.factorization);
   solver_.factorize(values_.data());
 }
@@ -206,6 +228,7 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
       contact_->add_springs(state_.positions, layout_, model_.num_elements(), values_,
                             state_.f_contact);
     }
+    await_analysis();
     ScopedTimer timer(timers_.factorization);
     if (bc_.num_equations > 0 && !factor_current) solver_.factorize(values_.data());
   }
@@ -530,6 +553,7 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
 
 bool Simulation::fold_modulus_change(double mass_coefficient) {
   if (!scene_.solver.factor_updates || bc_.num_equations == 0) return false;
+  await_analysis();
   ScopedTimer timer(timers_.factorization);
   modulus_change_terms(model_, bc_.equation, state_.changed_elements, damage_before_, moduli_added_,
                        moduli_removed_);
@@ -963,6 +987,14 @@ RunResult Simulation::run(const RunOptions& options) {
       outputs->frame(model_, stats_.steps, t);  // the last committed state, for diagnosis
     }
   }
+  try {
+    await_analysis();  // the summary reads the solver
+  } catch (const std::exception& failure) {
+    if (result.ok) {
+      result.ok = false;
+      result.reason = failure.what();
+    }
+  }
   const double wall =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   result.summary = summary(result, wall, threads, options.setup);
@@ -1083,6 +1115,7 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
   if (setup) s["mesh_cache"] = mesh_cache_outcome_name(setup->mesh_cache);
   const SolverStats& st = solver_.stats();
   s["solver"] = {{"analyses", st.analyses},
+                 {"analysis_seconds", st.analysis_seconds},
                  {"factorizations", st.factorizations},
                  {"updates", st.updates},
                  {"updated_columns", st.updated_columns},

@@ -1,6 +1,8 @@
 #pragma once
 // The step loop of the paper's flowchart (Fig. 3), and nothing else: each stage lives in
 // its own file and this one calls them in order.
+#include <oneapi/tbb/task_group.h>
+
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -90,6 +92,7 @@ class Simulation {
 
   const Model& model() const { return model_; }
   const Scene& scene() const { return scene_; }
+  /// The solver's counters; complete once run() has returned.
   const SolverStats& solver_stats() const { return solver_.stats(); }
   const StageTimers& timers() const { return timers_; }
 
@@ -100,8 +103,11 @@ class Simulation {
   /// Reassembles K + cM (into base_values_ with contacts, values_ without) when the mass
   /// coefficient, the moduli or the pattern changed; without contacts also refactorizes.
   void prepare_system(double mass_coefficient);
-  /// Pattern of elements plus current contact triples; CHOLMOD analysis of it.
+  /// Pattern of elements plus current contact triples; CHOLMOD analysis of it, started beside
+  /// the scatter map (await_analysis() waits for it).
   void rebuild_layout();
+  /// Waits for the analysis rebuild_layout() started, if any: before the solver is used.
+  void await_analysis();
   /// CHOLMOD's analysis of layout_.pattern; the first one through the ordering cache beside
   /// the mesh (mesh_slot_) when there is one.
   void analyze_layout();
@@ -183,6 +189,8 @@ class Simulation {
   ElementColoring coloring_;
   StiffnessLayout layout_;
   CholmodSolver solver_;
+  tbb::task_group analysis_task_;           // runs the solver's analysis beside the scatter map
+  bool analysis_pending_ = false;           // analysis_task_ holds a task no one waited for
   std::optional<MeshCacheSlot> mesh_slot_;  // until the first analysis has used it
   MeshCacheOutcome ordering_cache_ = MeshCacheOutcome::off;
   std::vector<double> values_;

@@ -1,6 +1,7 @@
 #include "tools/realization_workers.hpp"
 
 #include <fcntl.h>
+#include <oneapi/tbb/global_control.h>
 #include <sys/prctl.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -10,6 +11,7 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
+#include <optional>
 #include <stdexcept>
 
 namespace rockdd::cli {
@@ -43,6 +45,10 @@ std::string read_report(int fd) {
 int run_realization(const Scene& scene, const MonteCarloPlan& plan, std::uint64_t seed, int threads,
                     bool frames, int report_fd) {
   try {
+    std::optional<tbb::global_control> parallelism;  // the model and set-up too
+    if (threads > 0)
+      parallelism.emplace(tbb::global_control::max_allowed_parallelism,
+                          static_cast<std::size_t>(threads));
     const Scene realization = realization_scene(scene, seed);
     Simulation sim(realization, build_scene_model(realization));
     RunOptions options;

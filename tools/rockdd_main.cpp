@@ -1,4 +1,5 @@
 // rockdd command line: a thin client of the engine library (engine/rockdd.hpp).
+#include <oneapi/tbb/global_control.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -177,6 +178,12 @@ class Progress {
 };
 
 int run(const Command& cmd, std::optional<double> startup) {
+  // --threads bounds the whole run: the model and the simulation's set-up too, not only its
+  // steps (RunOptions::threads).
+  std::optional<tbb::global_control> parallelism;
+  if (cmd.threads > 0)
+    parallelism.emplace(tbb::global_control::max_allowed_parallelism,
+                        static_cast<std::size_t>(cmd.threads));
   double scene_seconds = 0;
   rockdd::Scene scene;
   {

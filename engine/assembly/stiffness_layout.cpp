@@ -8,9 +8,8 @@
 
 namespace rockdd {
 
-StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::int32_t num_nodes,
+StiffnessLayout build_sparsity_pattern(std::span<const std::int32_t> conn, std::int32_t num_nodes,
                                        std::span<const std::int32_t> equation) {
-  const auto num_elements = static_cast<std::int32_t>(conn.size() / 3);
   const NodeIncidence inc = build_node_incidence(conn, num_nodes);
 
   // Neighbour nodes of each node (itself included), sorted: the node graph of the mesh, as a
@@ -75,8 +74,14 @@ StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::
     for_each_row(col, [&](std::int32_t row) { p.row_idx[pos++] = row; });
     layout.diagonal[col] = p.col_ptr[col + 1] - 1;  // the diagonal is the last row of its column
   });
+  return layout;
+}
 
-  // Scatter map: element entry (a, b), a <= b, to the value index of (min eq, max eq).
+void build_scatter_map(std::span<const std::int32_t> conn, std::span<const std::int32_t> equation,
+                       StiffnessLayout& layout) {
+  const auto num_elements = static_cast<std::int32_t>(conn.size() / 3);
+  const SparsityPattern& p = layout.pattern;
+  // Element entry (a, b), a <= b, to the value index of (min eq, max eq).
   layout.scatter.resize(static_cast<std::size_t>(num_elements) * kElementUpperEntries);
   tbb::parallel_for(tbb::blocked_range<std::int32_t>(0, num_elements, 1024), [&](auto range) {
     for (std::int32_t e = range.begin(); e != range.end(); ++e) {
@@ -97,6 +102,12 @@ StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::
         }
     }
   });
+}
+
+StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::int32_t num_nodes,
+                                       std::span<const std::int32_t> equation) {
+  StiffnessLayout layout = build_sparsity_pattern(conn, num_nodes, equation);
+  build_scatter_map(conn, equation, layout);
   return layout;
 }
 

@@ -24,4 +24,13 @@ struct StiffnessLayout {
 StiffnessLayout build_stiffness_layout(std::span<const std::int32_t> conn, std::int32_t num_nodes,
                                        std::span<const std::int32_t> equation);
 
+/// The first half of build_stiffness_layout: the pattern and the diagonal positions, scatter
+/// map left empty (what CHOLMOD's analysis needs, so that it can run beside the second half).
+StiffnessLayout build_sparsity_pattern(std::span<const std::int32_t> conn, std::int32_t num_nodes,
+                                       std::span<const std::int32_t> equation);
+
+/// The second half: fills `layout.scatter` for elements `conn` from its pattern.
+void build_scatter_map(std::span<const std::int32_t> conn, std::span<const std::int32_t> equation,
+                       StiffnessLayout& layout);
+
 }  // namespace rockdd

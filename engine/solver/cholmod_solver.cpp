@@ -437,6 +437,7 @@ void CholmodSolver::finish_analysis(const SparsityPattern& pattern, FillOrdering
   stats_.analysis_flops = s.common.fl;
   stats_.ordering = kept;
   stats_.last_analysis_seconds = seconds_since(start);
+  stats_.analysis_seconds += stats_.last_analysis_seconds;
   ++stats_.analyses;
 }
 

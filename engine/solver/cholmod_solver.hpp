@@ -26,6 +26,7 @@ struct SolverStats {
   double factor_nonzeros = 0.0;        // nnz(L) of the last analysis (cholmod_common.lnz)
   double analysis_flops = 0.0;         // the flops it predicts per factorization
   double last_analysis_seconds = 0.0;  // the last analyze(), ordering included
+  double analysis_seconds = 0.0;       // every analyze(), on whichever thread ran it
   FillOrdering ordering = FillOrdering::cholmod;  // the ordering the last analysis kept
   double last_update_seconds = 0.0;               // the last update(), its conversion included
 };
