@@ -737,9 +737,22 @@ void Simulation::detach_fractured_elements() {
   recompute_committed_forces();
 }
 
-void Simulation::follow_cascade_with_inertia(long step, double time, StepControl& control) {
+void Simulation::follow_cascade_with_inertia(long step, double time, double end_time,
+                                             StepControl& control) {
   inertia_called_for_ = false;
   const double dt = snap_back_time_step(scene_, model_);
+  // Every later step is dynamic: a run that only time.end ends would need that many steps of
+  // dt. Said now rather than left to run for days.
+  constexpr double kMostDynamicSteps = 1e6;
+  if (!scene_.time.stop_at_softening && (end_time - time) / dt > kMostDynamicSteps) {
+    char buf[400];
+    std::snprintf(buf, sizeof buf,
+                  "step %ld: a damage cascade is followed with inertia from here "
+                  "(fracture.snap_back = \"dynamic\") at dt %.3g s, and time.end leaves %.3g s: "
+                  "%.3g steps; end the run sooner (time.end, or time.stop_at_softening)",
+                  step, dt, end_time - time, (end_time - time) / dt);
+    throw RunFailure(buf);
+  }
   analysis_ = Analysis::dynamic;
   integrator_ = Integrator::newmark;  // neither damps nor adds: the release becomes motion
   control.restart_at(dt);
@@ -966,7 +979,6 @@ RunResult Simulation::run(const RunOptions& options) {
       t += dt;
       stats_.steps = step;
       control.accept(true);
-      if (inertia_called_for_ && !fracture_failure) follow_cascade_with_inertia(step, t, control);
       const StepReport report{step, t, dt, end_time, planned};
       if (!fracture_failure && options.keep_going && !options.keep_going(report, model_))
         stopped_by_caller = true;
@@ -978,6 +990,7 @@ RunResult Simulation::run(const RunOptions& options) {
       }
       if (options.on_step) options.on_step(report, model_);
       if (stop) break;
+      if (inertia_called_for_) follow_cascade_with_inertia(step, t, end_time, control);
     }
   } catch (const RunFailure& failure) {
     result.ok = false;

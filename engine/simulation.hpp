@@ -169,8 +169,9 @@ class Simulation {
   void recompute_committed_forces();
   /// fracture.snap_back = "dynamic": after the step whose damage cascade called for inertia,
   /// the run goes on as a dynamic analysis (Newmark, snap_back_time_step) from the committed
-  /// state, which the last damage pass left out of balance.
-  void follow_cascade_with_inertia(long step, double time, StepControl& control);
+  /// state, which the last damage pass left out of balance. Throws RunFailure when only
+  /// time.end would end the run and it leaves more than 10^6 dynamic steps.
+  void follow_cascade_with_inertia(long step, double time, double end_time, StepControl& control);
   /// Force scale of the committed state (N): the largest element edge force, load or reaction.
   double element_force_scale() const;
   EnergyBalance energy() const;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -240,6 +241,23 @@ TEST(BrazilianDisk, SnapBackFollowedWithInertiaSplitsAlongTheDiameter) {
   EXPECT_GE(split.near_diameter, 0.80) << split.damaged << " damaged";
   EXPECT_LT(split.energy_gap, 0.02);
   EXPECT_LT(std::abs(split.integrator), 1e-6);
+}
+
+TEST(BrazilianDisk, SnapBackWithInertiaThatOnlyTimeEndWouldEndFailsAtOnce) {
+  // Once a cascade is followed with inertia every later step is dynamic: the same scene
+  // without its softening stop would need (0.5 - 0.223) s / 5.2e-8 s = 5.3e6 steps (hours).
+  // Required: the run ends at the switch (step 223) and says why, naming the keys that end it.
+  std::istringstream file(test::read_text(test::data_file("brazilian_disk_displacement.toml")));
+  std::string scene, line;
+  while (std::getline(file, line))
+    if (line.find("softening") == std::string::npos) scene += line + "\n";
+  const auto run = test::run_scene_text(scene, {"fracture.snap_back=dynamic"}, 1);
+  ASSERT_FALSE(run.result.ok);
+  EXPECT_NE(run.result.reason.find("step 223: a damage cascade is followed with inertia"),
+            std::string::npos)
+      << run.result.reason;
+  EXPECT_NE(run.result.reason.find("time.stop_at_softening"), std::string::npos);
+  EXPECT_EQ(run.history.at("top.fy").size(), 224u);  // steps 0-223: the switch step is recorded
 }
 
 /// The platen force and the largest principal stress of the elastic flattened disk
