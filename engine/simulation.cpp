@@ -761,18 +761,17 @@ void Simulation::follow_cascade_with_inertia(long step, double time, double end_
   fragments_ = FragmentRestraint();
   loose_parts_held_ = false;
   std::fill(state_.restraint_force.begin(), state_.restraint_force.end(), 0.0);
-  if (contact_) {
-    auto contact = std::make_unique<ContactStage>(scene_, model_, analysis_);
-    contact->carry_contacts_from(*contact_);
-    contact_ = std::move(contact);
-    rebuild_layout();
-  }
+  if (contact_) contact_->set_analysis(analysis_);  // same contacts, same pattern
   factorized_mass_coefficient_ = -1.0;
-  // Newmark starts from the acceleration that balances the committed state, a0 = M^-1 (f_ext -
-  // f_int - f_contact): the last pass's modulus drop left it out of balance, and starting
-  // from a0 = 0 would misplace the first step's velocity by that force.
+  // The last pass's modulus drop left the committed state out of balance.
+  balance_acceleration();
+}
+
+void Simulation::balance_acceleration() {
+  // Starting from a = 0 instead would misplace every later velocity by the unbalanced force
+  // (g dt / 2 for a body under gravity at rest).
   for (std::size_t d = 0; d < model_.X.size(); ++d)
-    state_.acceleration[d] = bc_.prescribed[d]
+    state_.acceleration[d] = bc_.prescribed[d] || analysis_ != Analysis::dynamic
                                  ? 0.0
                                  : (state_.f_ext_old[d] - state_.f_int[d] - state_.f_contact[d]) /
                                        model_.node_mass[d / 2];
@@ -911,13 +910,7 @@ RunResult Simulation::run(const RunOptions& options) {
     state_.f_ext_old[d] = initial_factor * reference_loads_[d];
   compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, state_.f_int,
                          corotational_);
-  // Newmark needs the acceleration that balances the initial state, a0 = M^-1 (F - f_int);
-  // starting from a0 = 0 would leave a velocity error of g dt / 2 for the whole run.
-  for (std::size_t d = 0; d < model_.X.size(); ++d)
-    state_.acceleration[d] =
-        bc_.prescribed[d] || analysis_ != Analysis::dynamic
-            ? 0.0
-            : (state_.f_ext_old[d] - state_.f_int[d]) / model_.node_mass[d / 2];
+  balance_acceleration();  // no contact force yet: f_contact is zero
   std::vector<double> row;
   // The end on softening (time.stop_at_softening) watches one history column.
   const bool watch_softening = scene_.time.stop_at_softening.has_value();

@@ -167,6 +167,10 @@ class Simulation {
   void turn_loose_block_frames();
   /// After nodes split: loads and constraint forces of the committed state on the new nodes.
   void recompute_committed_forces();
+  /// With inertia, Newmark's acceleration that balances the committed state,
+  /// a = M^-1 (f_ext - f_int - f_contact) on the free dofs (0 on prescribed ones, and without
+  /// inertia); from the committed forces in state_.
+  void balance_acceleration();
   /// fracture.snap_back = "dynamic": after the step whose damage cascade called for inertia,
   /// the run goes on as a dynamic analysis (Newmark, snap_back_time_step) from the committed
   /// state, which the last damage pass left out of balance. Throws RunFailure when only
@@ -190,8 +194,6 @@ class Simulation {
   ElementColoring coloring_;
   StiffnessLayout layout_;
   CholmodSolver solver_;
-  tbb::task_group analysis_task_;           // runs the solver's analysis beside the scatter map
-  bool analysis_pending_ = false;           // analysis_task_ holds a task no one waited for
   std::optional<MeshCacheSlot> mesh_slot_;  // until the first analysis has used it
   MeshCacheOutcome ordering_cache_ = MeshCacheOutcome::off;
   std::vector<double> values_;
@@ -250,6 +252,11 @@ class Simulation {
   RunStats stats_;   // what the run did, for summary.json
   StageTimers timers_;
   SetupTimers setup_timers_;
+  bool analysis_pending_ = false;  // analysis_task_ holds a task no one waited for
+  // Runs the solver's analysis beside the scatter map. Declared last, so destroyed first: a
+  // constructor that throws after starting it waits for the task (oneTBB's destructor does)
+  // while the members it reads and writes (layout_, solver_, mesh_slot_) still stand.
+  tbb::task_group analysis_task_;
 };
 
 }  // namespace rockdd

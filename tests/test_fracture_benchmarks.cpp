@@ -224,7 +224,8 @@ TEST(BrazilianDisk, SnapBackFollowedWithInertiaSplitsAlongTheDiameter) {
   // strain + kinetic + dissipated + snap-back + integrator to 2 % at every step, Newmark
   // damping nothing. Measured: first damage in step 221 (no cascade), switch after step 223,
   // peak 2.162 MPa (+2.1 %, the dynamic overshoot; 2.154 MPa held), load to 1.5 %,
-  // halves of 1,385 and 1,289 elements, 86.6 % of 493 damaged elements near the diameter,
+  // halves of 1,385 and 1,289 elements, 86.6 % of 493 damaged elements near the diameter
+  // (a band of fragments 4-8 mm wide, not one crack: docs/figures/disk_snap_back_crack.png),
   // unaccounted -0.6 %. Not a cure for issue 11's 80 %: at dt / 2 the same stop finds 78 %,
   // at h / sqrt(2) and with snap_back_dt x 1/4 .. x 2 the load has fallen 95 % before the
   // halves part (84-96 %, one block), and run on, the halves, still held by the flats, shatter

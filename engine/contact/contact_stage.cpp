@@ -153,10 +153,7 @@ ContactStage::ContactStage(const Scene& scene, const Model& model, Analysis anal
   // Without inertia nothing but its own contacts holds a block tangentially, and friction as a
   // bare load would throw one that is held on one side only: a sliding contact keeps a
   // spring of a small fraction of ks (ContactParameters::sliding_stiffness).
-  if (analysis != Analysis::dynamic) {
-    parameters_.sliding_stiffness = kSlidingStiffnessFraction * parameters_.shear_stiffness;
-    parameters_.forgive_unresisted_overlap = true;
-  }
+  set_analysis(analysis);
   // Candidates within half the median boundary edge: near enough to close within a step.
   std::vector<double> lengths;
   for (std::size_t i = 0; i + 1 < boundary_.edge_nodes.size(); i += 2) {
@@ -222,6 +219,13 @@ void ContactStage::spring_changes(std::span<const ContactSprings> before,
     if (shear_change != 0.0)
       column(c, c.t, std::abs(shear_change), shear_change > 0.0 ? added : removed);
   }
+}
+
+void ContactStage::set_analysis(Analysis analysis) {
+  const bool inertia = analysis == Analysis::dynamic;
+  parameters_.sliding_stiffness =
+      inertia ? 0.0 : kSlidingStiffnessFraction * parameters_.shear_stiffness;
+  parameters_.forgive_unresisted_overlap = !inertia;
 }
 
 void ContactStage::carry_contacts_from(const ContactStage& old) {

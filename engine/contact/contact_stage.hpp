@@ -82,6 +82,10 @@ class ContactStage {
   /// dynamic.
   ContactStage(const Scene& scene, const Model& model, Analysis analysis);
 
+  /// The sliding springs and forgiven overlaps of steps without inertia, or neither with it
+  /// (a run that goes on with inertia: fracture.snap_back = "dynamic").
+  void set_analysis(Analysis analysis);
+
   /// Finds the contacts at `positions`; keeps the state of pairs that persist. Returns true
   /// when the set of (vertex, a, b) triples changed (the pattern must be rebuilt).
   bool detect(std::span<const double> positions);

@@ -160,15 +160,14 @@ FragmentRestraint::FragmentRestraint(const Model& model, const BoundaryCondition
   // around it but are not detached yet): it gets a support that holds only its free rigid
   // modes. The other free parts (blocks detached loose) and lone nodes (only broken elements
   // touch them) get the weak spring on every node.
-  const bool any_free = std::find(free.begin(), free.end(), 1) != free.end();
-  const std::vector<std::uint8_t> block_free =
-      any_free ? unrestrained_blocks(model, bc)
-               : std::vector<std::uint8_t>(static_cast<std::size_t>(model.num_blocks), 1);
   std::vector<std::uint8_t> cut_loose(static_cast<std::size_t>(num_parts), 0),
       in_part(num_nodes, 0);
-  for (std::int32_t e = 0; e < model.num_elements(); ++e)
-    if (part[e] >= 0 && free[part[e]] && !block_free[model.element_block[e]])
-      cut_loose[part[e]] = 1;
+  if (std::find(free.begin(), free.end(), 1) != free.end()) {
+    const std::vector<std::uint8_t> block_free = unrestrained_blocks(model, bc);
+    for (std::int32_t e = 0; e < model.num_elements(); ++e)
+      if (part[e] >= 0 && free[part[e]] && !block_free[model.element_block[e]])
+        cut_loose[part[e]] = 1;
+  }
   for (const auto& [p, n] : members) in_part[n] = 1;
   std::vector<double> k(2 * num_nodes, 0.0);
   for (std::int32_t e = 0; e < model.num_elements(); ++e) {
