@@ -177,7 +177,7 @@ void BM_RebuildAfterDetachment(benchmark::State& state) {
     state.SetIterationTime(seconds_between(t[0], t[7]));
     for (int p = 0; p < 7; ++p) part[p] += seconds_between(t[p], t[p + 1]);
     benchmark::DoNotOptimize(loads.data());
-    benchmark::DoNotOptimize(coloring.element.data());
+    benchmark::DoNotOptimize(coloring.chunk.data());
     benchmark::DoNotOptimize(fragments.num_dofs());
   }
   report(state, c);

@@ -83,6 +83,24 @@ void BM_ElasticityAndStiffness(benchmark::State& state) {
 }
 BENCHMARK(BM_ElasticityAndStiffness)->Unit(benchmark::kMillisecond);
 
+// What assembly computes: the isotropic moduli per element (damaged modulus), then the
+// upper triangle of k without D's zeros.
+void BM_IsotropicStiffnessUpper(benchmark::State& state) {
+  const auto& xy = triangles();
+  double ku[k::kUpperEntries];
+  for (auto _ : state) {
+    for (int e = 0; e < kElements; ++e) {
+      const k::IsotropicModuli d =
+          k::isotropic_moduli(2e10 * (1.0 - 1e-6 * (e & 1023)), 0.25, k::PlaneKind::strain);
+      k::cst_isotropic_stiffness_upper(&xy[6 * e], d, 1.0, ku);
+      benchmark::DoNotOptimize(ku);
+    }
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(state.iterations() * kElements);
+}
+BENCHMARK(BM_IsotropicStiffnessUpper)->Unit(benchmark::kMillisecond);
+
 // The internal-force pass: strain, stress and nodal force per element, forces stored.
 void BM_StrainStressInternalForce(benchmark::State& state) {
   const auto& xy = triangles();

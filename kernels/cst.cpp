@@ -23,30 +23,30 @@ double cst_gradients(const double xy[6], double b[3], double c[3]) {
   return 0.5 * (b[1] * c[2] - b[2] * c[1]);
 }
 
-void elasticity_matrix(double young, double poisson, PlaneKind plane, double d[9]) {
+IsotropicModuli isotropic_moduli(double young, double poisson, PlaneKind plane) {
   // The shear modulus is written as E / (2 (1 + nu)) in both modes: the textbook form
   // E / ((1 + nu)(1 - 2 nu)) * (1 - 2 nu) / 2 loses digits as nu approaches 1/2.
   const double nu = poisson;
   const double shear = young / (2.0 * (1.0 + nu));
-  double normal, cross;
   if (plane == PlaneKind::stress) {
     const double f = young / (1.0 - nu * nu);
-    normal = f;
-    cross = f * nu;
-  } else {
-    const double f = young / ((1.0 + nu) * (1.0 - 2.0 * nu));
-    normal = f * (1.0 - nu);
-    cross = f * nu;
+    return {f, f * nu, shear};
   }
-  d[0] = normal;
-  d[1] = cross;
+  const double f = young / ((1.0 + nu) * (1.0 - 2.0 * nu));
+  return {f * (1.0 - nu), f * nu, shear};
+}
+
+void elasticity_matrix(double young, double poisson, PlaneKind plane, double d[9]) {
+  const IsotropicModuli m = isotropic_moduli(young, poisson, plane);
+  d[0] = m.normal;
+  d[1] = m.cross;
   d[2] = 0.0;
-  d[3] = cross;
-  d[4] = normal;
+  d[3] = m.cross;
+  d[4] = m.normal;
   d[5] = 0.0;
   d[6] = 0.0;
   d[7] = 0.0;
-  d[8] = shear;
+  d[8] = m.shear;
 }
 
 void cst_stiffness(const double xy[6], const double d[9], double t, double k[36]) {
@@ -74,6 +74,29 @@ void cst_stiffness(const double xy[6], const double d[9], double t, double k[36]
                                   bhat[a][2] * dbhat[bb][2]);
       k[6 * a + bb] = kab;
       k[6 * bb + a] = kab;
+    }
+  }
+}
+
+void cst_isotropic_stiffness_upper(const double xy[6], const IsotropicModuli& d, double t,
+                                   double ku[kUpperEntries]) {
+  double b[3], c[3];
+  const double area = cst_gradients(xy, b, c);
+  const double scale = t / (4.0 * std::fabs(area));
+  const double normal = scale * d.normal, cross = scale * d.cross, shear = scale * d.shear;
+  // With B's x column of node i {b_i, 0, c_i} and y column {0, c_i, b_i} (cst_stiffness),
+  // the 2x2 block of nodes (i, j) is
+  //   [normal b_i b_j + shear c_i c_j    cross b_i c_j + shear c_i b_j ]
+  //   [cross c_i b_j + shear b_i c_j     normal c_i c_j + shear b_i b_j].
+  int n = 0;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) {  // row x_i
+      ku[n++] = normal * b[i] * b[j] + shear * c[i] * c[j];
+      ku[n++] = cross * b[i] * c[j] + shear * c[i] * b[j];
+    }
+    for (int j = i; j < 3; ++j) {  // row y_i, from its diagonal on
+      if (j > i) ku[n++] = cross * c[i] * b[j] + shear * b[i] * c[j];
+      ku[n++] = normal * c[i] * c[j] + shear * b[i] * b[j];
     }
   }
 }

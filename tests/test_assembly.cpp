@@ -3,6 +3,7 @@
 #include <oneapi/tbb/global_control.h>
 
 #include <Eigen/Dense>
+#include <atomic>
 #include <cstring>
 
 #include "engine/assembly/assemble_stiffness.hpp"
@@ -73,15 +74,79 @@ Eigen::MatrixXd dense(const SparsityPattern& p, const std::vector<double>& value
   return k;
 }
 
+/// Checks that the chunks of each colour share no node and that every element is visited
+/// exactly once, in chunks of consecutive elements.
+void expect_valid_coloring(const ElementColoring& coloring, std::span<const std::int32_t> conn,
+                           std::int32_t num_nodes) {
+  const auto num_elements = static_cast<std::int32_t>(conn.size() / 3);
+  ASSERT_EQ(coloring.num_elements, num_elements);
+  std::vector<int> visits(static_cast<std::size_t>(num_elements), 0);
+  for (std::int32_t c = 0; c < coloring.num_colors(); ++c) {
+    std::vector<std::int32_t> owner(static_cast<std::size_t>(num_nodes), -1);
+    for (std::int32_t i = coloring.offset[c]; i < coloring.offset[c + 1]; ++i) {
+      const std::int32_t k = coloring.chunk[i];
+      for (std::int32_t e = coloring.chunk_begin(k); e < coloring.chunk_end(k); ++e) {
+        ++visits[e];
+        for (int j = 0; j < 3; ++j) {
+          std::int32_t& o = owner[conn[3 * e + j]];
+          EXPECT_TRUE(o == -1 || o == k) << "colour " << c << ": chunks " << o << " and " << k
+                                         << " share node " << conn[3 * e + j];
+          o = k;
+        }
+      }
+    }
+  }
+  for (std::int32_t e = 0; e < num_elements; ++e) EXPECT_EQ(visits[e], 1) << "element " << e;
+}
+
 TEST(Coloring, ElementsOfOneColourShareNoNode) {
   const Assembled a = assemble(kRectangle, true);
-  for (std::int32_t c = 0; c < a.coloring.num_colors(); ++c) {
-    std::vector<int> seen(static_cast<std::size_t>(a.model.num_nodes()), 0);
-    for (std::int32_t i = a.coloring.offset[c]; i < a.coloring.offset[c + 1]; ++i)
-      for (int k = 0; k < 3; ++k) EXPECT_EQ(seen[a.model.conn[3 * a.coloring.element[i] + k]]++, 0);
-  }
+  expect_valid_coloring(a.coloring, a.model.conn, a.model.num_nodes());
   EXPECT_LE(a.coloring.num_colors(), 16);
-  EXPECT_EQ(a.coloring.element.size(), static_cast<std::size_t>(a.model.num_elements()));
+}
+
+TEST(Coloring, ChunksOfAStructuredMeshNeedFewColoursAndEachVisitsItsElementsInOrder) {
+  // 200 x 200 cells, two triangles each: 80,000 elements in chunks of 80 / 512 = 156.
+  const int n = 200;
+  std::vector<std::int32_t> conn;
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const std::int32_t a = j * (n + 1) + i, b = a + 1, c = a + n + 1, d = c + 1;
+      conn.insert(conn.end(), {a, b, d, a, d, c});
+    }
+  const ElementColoring coloring = color_elements(conn, (n + 1) * (n + 1));
+  EXPECT_EQ(coloring.chunk_size, coloring_chunk_size(2 * n * n));
+  EXPECT_EQ(coloring.chunk_size, 156);
+  expect_valid_coloring(coloring, conn, (n + 1) * (n + 1));
+  EXPECT_LE(coloring.num_colors(), 4);
+  // The visiting order on one thread: colour by colour, chunks ascending, each chunk's
+  // elements consecutively; on any number of threads, every element once.
+  std::vector<std::int32_t> expected;
+  for (std::int32_t i = 0; i < static_cast<std::int32_t>(coloring.chunk.size()); ++i)
+    for (std::int32_t e = coloring.chunk_begin(coloring.chunk[i]);
+         e < coloring.chunk_end(coloring.chunk[i]); ++e)
+      expected.push_back(e);
+  std::vector<std::int32_t> order;
+  {
+    tbb::global_control one(tbb::global_control::max_allowed_parallelism, 1);
+    for_each_element_by_color(coloring, [&](std::int32_t e) { order.push_back(e); });
+  }
+  EXPECT_EQ(order, expected);
+  std::vector<std::atomic<int>> visits(conn.size() / 3);
+  for_each_element_by_color(coloring, [&](std::int32_t e) { ++visits[e]; });
+  for (const auto& v : visits) EXPECT_EQ(v.load(), 1);
+}
+
+TEST(Coloring, ANodeSharedByTooManyElementsIsNamed) {
+  // A fan of 70 triangles round node 0: every element touches it.
+  std::vector<std::int32_t> conn;
+  for (std::int32_t i = 0; i < 70; ++i) conn.insert(conn.end(), {0, 1 + i, 2 + i});
+  try {
+    color_elements(conn, 72);
+    FAIL() << "expected an error";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("element 63"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Layout, PatternIsUpperTriangularSortedWithDiagonal) {

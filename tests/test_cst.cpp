@@ -365,6 +365,30 @@ TEST(CstElasticity, NearlyIncompressiblePlaneStrainIsFinite) {
   EXPECT_EQ(d.llt().info(), Eigen::Success);
 }
 
+TEST(CstIsotropicStiffness, UpperTriangleEqualsTheGeneralForm) {
+  // cst_isotropic_stiffness_upper is cst_stiffness with D's zeros left out, so each entry
+  // must agree to round-off: |dk| <= 1e-14 max|k|, for both planes, either node order
+  // (|A| in the integral) and nu up to 0.4999 in plane strain.
+  std::mt19937_64 rng(23);
+  for (int trial = 0; trial < 50; ++trial) {
+    auto xy = random_triangle(rng);
+    if (trial % 2 == 1) {  // clockwise: swap nodes 1 and 2
+      std::swap(xy[2], xy[4]);
+      std::swap(xy[3], xy[5]);
+    }
+    for (PlaneKind plane : kPlanes)
+      for (double nu : {0.0, 0.22, 0.4999}) {
+        const Mat6 km = stiffness(xy.data(), 3e10, nu, plane, 0.7);
+        double ku[k::kUpperEntries];
+        k::cst_isotropic_stiffness_upper(xy.data(), k::isotropic_moduli(3e10, nu, plane), 0.7, ku);
+        const double scale = km.cwiseAbs().maxCoeff();
+        for (int a = 0, i = 0; a < 6; ++a)
+          for (int b = a; b < 6; ++b, ++i)
+            EXPECT_LE(std::abs(ku[i] - km(a, b)), 1e-14 * scale) << "entry " << a << "," << b;
+      }
+  }
+}
+
 TEST(CstInternalForce, EqualsStiffnessTimesDisplacement) {
   // f(u) = t A B^T D B u must equal k u: ||f - k u||_inf <= 1e-12 ||k||_inf ||u||_inf.
   std::mt19937_64 rng(17);

@@ -13,18 +13,11 @@ void assemble_stiffness(const Model& model, const ElementColoring& coloring,
                         const StiffnessLayout& layout, std::span<const std::int32_t> equation,
                         double mass_coefficient, std::span<double> values) {
   std::fill(values.begin(), values.end(), 0.0);
-  for (std::int32_t c = 0; c < coloring.num_colors(); ++c) {
-    tbb::parallel_for(
-        tbb::blocked_range<std::int32_t>(coloring.offset[c], coloring.offset[c + 1], 256),
-        [&](auto range) {
-          for (std::int32_t i = range.begin(); i != range.end(); ++i) {
-            const std::int32_t e = coloring.element[i];
-            double k[36];
-            element_stiffness(model, e, damaged_young(model.young[e], model.damage[e]), k);
-            scatter_element_matrix(layout, e, k, values);
-          }
-        });
-  }
+  for_each_element_by_color(coloring, [&](std::int32_t e) {
+    double ku[kElementUpperEntries];
+    element_stiffness(model, e, damaged_young(model.young[e], model.damage[e]), ku);
+    scatter_element_matrix(layout, e, ku, values);
+  });
   if (mass_coefficient != 0.0) {
     const auto num_nodes = model.num_nodes();
     tbb::parallel_for(std::int32_t{0}, num_nodes, [&](std::int32_t n) {

@@ -58,23 +58,15 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
                             std::span<double> element_force) {
   const kernels::PlaneKind plane = plane_kind(model.plane);
   std::fill(f_int.begin(), f_int.end(), 0.0);
-  // Elements of one colour share no node, so each node sums its elements in colour order
+  // Chunks of one colour share no node, so each node sums its elements in the colouring's order
   // whatever the threads do (sum_element_forces relies on that order).
-  for (std::int32_t c = 0; c < coloring.num_colors(); ++c) {
-    tbb::parallel_for(
-        tbb::blocked_range<std::int32_t>(coloring.offset[c], coloring.offset[c + 1], 512),
-        [&](auto range) {
-          for (std::int32_t i = range.begin(); i != range.end(); ++i) {
-            const std::int32_t e = coloring.element[i];
-            const auto at = static_cast<std::size_t>(e);
-            double f[6];
-            element_internal_force(model, e, u, plane, corotational, &strain[3 * at],
-                                   &stress[3 * at], f);
-            if (!element_force.empty()) std::copy(f, f + 6, &element_force[6 * at]);
-            add_element_force(model, e, f, f_int);
-          }
-        });
-  }
+  for_each_element_by_color(coloring, [&](std::int32_t e) {
+    const auto at = static_cast<std::size_t>(e);
+    double f[6];
+    element_internal_force(model, e, u, plane, corotational, &strain[3 * at], &stress[3 * at], f);
+    if (!element_force.empty()) std::copy(f, f + 6, &element_force[6 * at]);
+    add_element_force(model, e, f, f_int);
+  });
 }
 
 void refresh_element_forces(const Model& model, std::span<const double> u,
@@ -91,15 +83,9 @@ void refresh_element_forces(const Model& model, std::span<const double> u,
 void sum_element_forces(const Model& model, const ElementColoring& coloring,
                         std::span<const double> element_force, std::span<double> f_int) {
   std::fill(f_int.begin(), f_int.end(), 0.0);
-  for (std::int32_t c = 0; c < coloring.num_colors(); ++c)
-    tbb::parallel_for(
-        tbb::blocked_range<std::int32_t>(coloring.offset[c], coloring.offset[c + 1], 2048),
-        [&](auto range) {
-          for (std::int32_t i = range.begin(); i != range.end(); ++i) {
-            const std::int32_t e = coloring.element[i];
-            add_element_force(model, e, &element_force[6 * static_cast<std::size_t>(e)], f_int);
-          }
-        });
+  for_each_element_by_color(coloring, [&](std::int32_t e) {
+    add_element_force(model, e, &element_force[6 * static_cast<std::size_t>(e)], f_int);
+  });
 }
 
 double largest_rotation_change(const Model& model, std::span<const double> u) {

@@ -57,9 +57,9 @@ void add_modulus_change(const Model& model, const StiffnessLayout& layout,
     const double before = damaged_young(model.young[e], damage_before[e]);
     const double after = damaged_young(model.young[e], model.damage[e]);
     if (after == before) continue;
-    double k[36];
-    element_stiffness(model, e, after - before, k);
-    scatter_element_matrix(layout, e, k, values);
+    double ku[kElementUpperEntries];
+    element_stiffness(model, e, after - before, ku);
+    scatter_element_matrix(layout, e, ku, values);
   }
 }
 

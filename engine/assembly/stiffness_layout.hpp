@@ -6,11 +6,12 @@
 #include <vector>
 
 #include "engine/assembly/sparsity_pattern.hpp"
+#include "kernels/cst.hpp"
 
 namespace rockdd {
 
 /// Entries of the upper triangle of a 6x6 element matrix, (a, b) with a <= b, row-major.
-inline constexpr int kElementUpperEntries = 21;
+inline constexpr int kElementUpperEntries = kernels::kUpperEntries;
 
 /// Pattern, scatter map and diagonal positions of the global stiffness.
 struct StiffnessLayout {
