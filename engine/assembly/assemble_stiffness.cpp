@@ -12,7 +12,11 @@ namespace rockdd {
 void assemble_stiffness(const Model& model, const ElementColoring& coloring,
                         const StiffnessLayout& layout, std::span<const std::int32_t> equation,
                         double mass_coefficient, std::span<double> values) {
-  std::fill(values.begin(), values.end(), 0.0);
+  // Zeroed in parallel: at 1e6 elements the values are 60 MB, a tenth of the pass on one thread.
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, values.size(), 1 << 16), [&](auto range) {
+    std::fill(values.begin() + static_cast<std::ptrdiff_t>(range.begin()),
+              values.begin() + static_cast<std::ptrdiff_t>(range.end()), 0.0);
+  });
   for_each_element_by_color(coloring, [&](std::int32_t e) {
     double ku[kElementUpperEntries];
     element_stiffness(model, e, damaged_young(model.young[e], model.damage[e]), ku);
