@@ -160,6 +160,46 @@ TEST(Layout, PatternIsUpperTriangularSortedWithDiagonal) {
   }
 }
 
+TEST(Layout, ScatterMapSendsEachElementEntryToItsRowAndColumn) {
+  // Every entry (a, b), a <= b, of every element: -1 exactly when a dof is prescribed, else
+  // the value index whose row is the smaller equation, inside the larger one's column. Also
+  // with contact-like triples (a node and a far edge) appended to the elements, and rollers
+  // (only x or only y prescribed) scattered over the mesh.
+  Assembled a = assemble(kRectangle, false);
+  std::int32_t next = 0;
+  for (std::size_t d = 0; d < a.equation.size(); ++d) {
+    const std::size_t n = d / 2;
+    const bool roller = d % 2 == 0 ? n % 3 == 1 : n % 5 == 2;
+    a.equation[d] = a.equation[d] < 0 || roller ? -1 : next++;
+  }
+  std::vector<std::int32_t> conn = a.model.conn;
+  const std::int32_t last = a.model.num_nodes() - 1;
+  conn.insert(conn.end(), {last, 0, 1, 2, last, last - 1});
+  const StiffnessLayout layout = build_stiffness_layout(conn, a.model.num_nodes(), a.equation);
+  const SparsityPattern& p = layout.pattern;
+  EXPECT_TRUE(layout.neighbours.node.empty());
+  const auto num_elements = static_cast<std::int32_t>(conn.size() / 3);
+  int checked = 0;
+  for (std::int32_t e = 0; e < num_elements; ++e) {
+    const std::int32_t* to = &layout.scatter[static_cast<std::size_t>(e) * kElementUpperEntries];
+    for (int i = 0; i < 6; ++i)
+      for (int j = i; j < 6; ++j, ++to) {
+        const std::int32_t ei = a.equation[2 * conn[3 * e + i / 2] + i % 2];
+        const std::int32_t ej = a.equation[2 * conn[3 * e + j / 2] + j % 2];
+        if (ei < 0 || ej < 0) {
+          EXPECT_EQ(*to, -1);
+          continue;
+        }
+        const std::int32_t col = std::max(ei, ej);
+        ASSERT_GE(*to, p.col_ptr[col]) << "element " << e << " entry " << i << "," << j;
+        ASSERT_LT(*to, p.col_ptr[col + 1]) << "element " << e << " entry " << i << "," << j;
+        EXPECT_EQ(p.row_idx[*to], std::min(ei, ej)) << "element " << e;
+        ++checked;
+      }
+  }
+  EXPECT_GT(checked, 10 * a.model.num_elements());
+}
+
 TEST(Assembly, FreeStiffnessHasExactlyThreeRigidModes) {
   // K of an unconstrained body is symmetric positive semi-definite with the 3 rigid-body
   // modes (2 translations, 1 rotation) as its null space: K r = 0 to round-off.
