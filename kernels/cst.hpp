@@ -44,8 +44,9 @@ void cst_stiffness(const double xy[6], const double d[9], double t, double k[36]
 inline constexpr int kUpperEntries = 21;
 
 /// The upper triangle of cst_stiffness for an isotropic D, row by row (k[0][0], k[0][1], ...,
-/// k[0][5], k[1][1], ...): what assembly adds, in a third fewer products than the general form
-/// since D's four zeros are not multiplied. Equal to cst_stiffness up to round-off.
+/// k[0][5], k[1][1], ...): what assembly adds. Works from D's three distinct entries in 2x2
+/// blocks per node pair and writes 21 entries, not 36 (bench_kernels: 2.2x the rate of
+/// elasticity_matrix plus cst_stiffness). Equal to cst_stiffness up to round-off.
 void cst_isotropic_stiffness_upper(const double xy[6], const IsotropicModuli& d, double t,
                                    double ku[kUpperEntries]);
 
