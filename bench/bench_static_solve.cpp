@@ -10,9 +10,9 @@
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
+#include "engine/engine.hpp"
 #include "engine/loading/boundary_conditions.hpp"
 #include "engine/loading/external_loads.hpp"
-#include "engine/rockdd.hpp"
 #include "engine/solver/cholmod_solver.hpp"
 
 namespace rockdd {

@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <string>
 
-#include "engine/rockdd.hpp"
+#include "engine/engine.hpp"
 
 namespace rockdd {
 namespace {

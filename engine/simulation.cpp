@@ -13,15 +13,15 @@
 #include "engine/assembly/element_state.hpp"
 #include "engine/assembly/internal_force.hpp"
 #include "engine/assembly/modulus_change.hpp"
+#include "engine/common/errors.hpp"
+#include "engine/common/process_clock.hpp"
 #include "engine/contact/contact_stage.hpp"
 #include "engine/damage/damage_stage.hpp"
 #include "engine/damage/detachment.hpp"
 #include "engine/damage/fragment_restraint.hpp"
-#include "engine/errors.hpp"
 #include "engine/loading/external_loads.hpp"
 #include "engine/mesh/mesh_cache.hpp"
 #include "engine/output/probes.hpp"
-#include "engine/process_clock.hpp"
 #include "engine/time/rotation_correction.hpp"
 #include "engine/time/snap_back.hpp"
 #include "kernels/damage_law.hpp"
@@ -834,13 +834,13 @@ double Simulation::released_by_damage(std::span<const double> damage_before,
   // At `strain`, where the modulus drops; the deformation the softer element takes on
   // afterwards is stored at the new modulus (counted in the strain energy). Serially in
   // element order: the total must not depend on threads.
-  const kernels::PlaneKind plane = plane_kind(model_.plane);
+  const kernels::PlaneKind plane = model_.plane;
   double energy = 0.0;
   for (std::int32_t e = 0; e < model_.num_elements(); ++e)
     if (model_.damage[e] > damage_before[e])
       energy += kernels::damage_dissipation(
                     &strain[3 * static_cast<std::size_t>(e)], model_.young[e], model_.poisson[e],
-                    plane, damage_before[e], model_.damage[e], kDamagedStiffnessFloor) *
+                    plane, damage_before[e], model_.damage[e], kernels::kStiffnessFloor) *
                 model_.area0[e];
   return energy * model_.thickness;
 }

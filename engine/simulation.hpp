@@ -16,20 +16,20 @@
 
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
+#include "engine/common/timers.hpp"
 #include "engine/damage/fragment_restraint.hpp"
-#include "engine/energy_account.hpp"
 #include "engine/loading/boundary_conditions.hpp"
 #include "engine/model/edge_adjacency.hpp"
 #include "engine/model/model.hpp"
 #include "engine/output/run_outputs.hpp"
-#include "engine/run_stats.hpp"
+#include "engine/report/energy_account.hpp"
+#include "engine/report/run_stats.hpp"
+#include "engine/report/setup_report.hpp"
 #include "engine/scene/scene.hpp"
-#include "engine/setup_report.hpp"
 #include "engine/solver/cholmod_solver.hpp"
-#include "engine/step_state.hpp"
+#include "engine/state/step_state.hpp"
 #include "engine/time/integrator.hpp"
 #include "engine/time/step_control.hpp"
-#include "engine/timers.hpp"
 
 namespace rockdd {
 

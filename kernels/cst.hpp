@@ -11,10 +11,9 @@
 //  - Element integrals use |A|, so a clockwise triangle gets the same k and f as its
 //    counter-clockwise reordering; a degenerate triangle (A = 0) is the caller's to reject.
 
-namespace rockdd::kernels {
+#include "kernels/material.hpp"
 
-/// Plane stress or plane strain: selects the elasticity matrix.
-enum class PlaneKind { stress, strain };
+namespace rockdd::kernels {
 
 /// Signed area of the triangle (positive when counter-clockwise).
 double cst_signed_area(const double xy[6]);

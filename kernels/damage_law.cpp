@@ -89,10 +89,6 @@ double compressive_damage(double eps_c1, double eps_c0, double lambda) {
   return 1.0 - lambda * eps_c0 / eps_c1;
 }
 
-double effective_modulus(double young, double w, double floor) {
-  return std::max((1.0 - w) * young, floor * young);
-}
-
 double damage_dissipation(const double eps[3], double young, double poisson, PlaneKind plane,
                           double w_old, double w_new, double floor) {
   double d[9];
@@ -101,7 +97,7 @@ double damage_dissipation(const double eps[3], double young, double poisson, Pla
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) energy += eps[i] * d[3 * i + j] * eps[j];
   return 0.5 * energy *
-         (effective_modulus(young, w_old, floor) - effective_modulus(young, w_new, floor));
+         (damaged_modulus(young, w_old, floor) - damaged_modulus(young, w_new, floor));
 }
 
 double onset_ratio(const double eps[3], const double sig[3], const DamageParams& p, PlaneKind plane,

@@ -20,12 +20,6 @@
 
 namespace rockdd::kernels {
 
-/// Default stiffness floor: a fully damaged element keeps 1e-6 E0 so K stays non-singular.
-inline constexpr double kDefaultStiffnessFloor = 1e-6;
-
-/// Which test starts tensile damage: major principal stress >= ft0, or eps_bar >= ft0/E0.
-enum class TensionOnset { stress, strain };
-
 /// The law that fired in an evaluation (tension is checked first; shear only without it).
 enum class DamageLaw { none, tension, shear };
 
@@ -39,7 +33,7 @@ struct DamageParams {
   double lambda = 0.1;      // residual strength coefficient: f_r = lambda f_0 (0 < lambda <= 1)
   double eta = 5.0;         // ultimate tensile strain coefficient: eps_tu = eta eps_t0 (eta > 1)
   TensionOnset onset = TensionOnset::stress;
-  double floor = kDefaultStiffnessFloor;  // stiffness floor, as a fraction of E0
+  double floor = kStiffnessFloor;  // stiffness floor, as a fraction of E0
 };
 
 /// Result of one evaluation: the new (never smaller) damage and the law whose criterion held.
@@ -103,15 +97,12 @@ double major_compressive_strain(const double eps[3], double poisson, PlaneKind p
 /// (1 if eps_c0 <= 0: the Mohr-Coulomb peak was reached with no compressive reserve).
 double compressive_damage(double eps_c1, double eps_c0, double lambda);
 
-/// Damaged modulus with the floor: max((1 - w) E0, floor E0).
-double effective_modulus(double young, double w, double floor = kDefaultStiffnessFloor);
-
 /// Energy released per unit volume (J/m^3) as damage grows from w_old to w_new at strain eps:
 /// the fall of the elastic energy 1/2 eps.D eps when the modulus drops from E(w_old) to
 /// E(w_new) at fixed strain. A secant damage law unloads to the origin, so this energy does
 /// not come back: it is dissipated.
 double damage_dissipation(const double eps[3], double young, double poisson, PlaneKind plane,
-                          double w_old, double w_new, double floor = kDefaultStiffnessFloor);
+                          double w_old, double w_new, double floor = kStiffnessFloor);
 
 /// How far an undamaged element stands past its onset: the larger of the tensile ratio (s1 / ft0
 /// for a stress onset, eps_bar / eps_t0 for a strain onset) and the Mohr-Coulomb ratio

@@ -3,7 +3,7 @@
 #include <exception>
 #include <new>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "rockdd/rockdd.hpp"
 
 namespace rockdd::api {

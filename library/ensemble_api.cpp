@@ -1,4 +1,4 @@
-#include "engine/rockdd.hpp"
+#include "engine/engine.hpp"
 #include "library/api_errors.hpp"
 #include "library/scene_impl.hpp"
 

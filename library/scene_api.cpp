@@ -1,6 +1,5 @@
-#include "engine/rockdd.hpp"
+#include "engine/engine.hpp"
 #include "engine/scene/scene_reader.hpp"
-#include "engine/supported_features.hpp"
 #include "library/api_errors.hpp"
 #include "library/scene_impl.hpp"
 
@@ -27,7 +26,6 @@ Scene Scene::from_string(std::string_view text, const std::vector<std::string>& 
                          const std::string& name) {
   return translate_errors([&] {
     rockdd::Scene scene = parse_scene(text, name, overrides);
-    check_supported_features(scene);
     return Scene(std::make_unique<Impl>(Impl{std::move(scene)}));
   });
 }

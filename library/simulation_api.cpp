@@ -1,6 +1,6 @@
 #include <memory>
 
-#include "engine/rockdd.hpp"
+#include "engine/engine.hpp"
 #include "library/api_errors.hpp"
 #include "library/scene_impl.hpp"
 

@@ -4,7 +4,7 @@
 
 #include <set>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/model/block_topology.hpp"
 #include "engine/model/edge_adjacency.hpp"
 

@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/solver/fill_reducing_ordering.hpp"
 
 namespace rockdd {

@@ -331,7 +331,7 @@ std::array<double, 4> hooke_3d(double e, double nu, const std::array<double, 4>&
           lambda * tr + 2 * mu * eps[2], mu * eps[3]};
 }
 
-TEST(CstElasticity, BothPlaneModesAgreeWith3dHooke) {
+TEST(CstElasticity, BothPlaneKindsAgreeWith3dHooke) {
   // Plane strain: ezz = 0, and 3D Hooke gives {sxx, syy, sxy} = D eps and szz = nu(sxx+syy).
   // Plane stress: with ezz = -nu/(1-nu)(exx+eyy), 3D Hooke gives szz = 0 and D eps in-plane.
   // Tolerance 1e-13 relative to max |sigma|.

@@ -93,7 +93,7 @@ TEST(DamageLaw, UniaxialTensionFollowsEq3) {
         EXPECT_EQ(pt.w, 1.0);
         EXPECT_EQ(pt.sigma, 0.0);
         // The stiffness floor still carries 1e-6 E0 eps.
-        expect_rel(k::effective_modulus(kE0, pt.w) * e, 1e-6 * kE0 * e, 1e-12);
+        expect_rel(k::damaged_modulus(kE0, pt.w) * e, 1e-6 * kE0 * e, 1e-12);
       }
     }
     EXPECT_GT(pre, 10);
@@ -288,7 +288,7 @@ TEST(DamageLaw, DamageNeverDecreases) {
   expect_rel(loaded.w, 1.0 - kLambda / 3, 1e-12);
   for (double e : {2 * et0, 0.5 * et0, 0.0, -0.5 * et0, -1e-3}) {
     const double eps[3] = {e, -kNu * e, 0.0};
-    const double sig[3] = {k::effective_modulus(kE0, loaded.w) * e, 0.0, 0.0};
+    const double sig[3] = {k::damaged_modulus(kE0, loaded.w) * e, 0.0, 0.0};
     EXPECT_EQ(k::evaluate_damage(eps, sig, p, PlaneKind::stress, loaded.w).w, loaded.w);
   }
   // Re-loading past the old maximum resumes the softening branch of eq. (3).
@@ -404,11 +404,11 @@ TEST(DamageLaw, CompressivePrincipalStressesAreOrdered) {
 
 TEST(DamageLaw, EffectiveModulusHasAFloor) {
   // Eq. (2) with the floor: max((1 - w) E0, floor E0).
-  EXPECT_EQ(k::effective_modulus(kE0, 0.0), kE0);
-  EXPECT_DOUBLE_EQ(k::effective_modulus(kE0, 0.75), 0.25 * kE0);
-  EXPECT_DOUBLE_EQ(k::effective_modulus(kE0, 1.0), 1e-6 * kE0);
-  EXPECT_DOUBLE_EQ(k::effective_modulus(kE0, 1.0, 1e-3), 1e-3 * kE0);
-  EXPECT_DOUBLE_EQ(k::effective_modulus(kE0, 0.9999999), 1e-6 * kE0);
+  EXPECT_EQ(k::damaged_modulus(kE0, 0.0), kE0);
+  EXPECT_DOUBLE_EQ(k::damaged_modulus(kE0, 0.75), 0.25 * kE0);
+  EXPECT_DOUBLE_EQ(k::damaged_modulus(kE0, 1.0), 1e-6 * kE0);
+  EXPECT_DOUBLE_EQ(k::damaged_modulus(kE0, 1.0, 1e-3), 1e-3 * kE0);
+  EXPECT_DOUBLE_EQ(k::damaged_modulus(kE0, 0.9999999), 1e-6 * kE0);
 }
 
 TEST(DamageLaw, DissipationIsTheElasticEnergyTheModulusDropReleases) {

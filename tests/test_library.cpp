@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/rockdd.hpp"
+#include "engine/engine.hpp"
 #include "rockdd/rockdd.h"
 #include "rockdd/rockdd.hpp"
 

@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/mesh/mesh.hpp"
 #include "engine/mesh/node_ordering.hpp"
 

@@ -17,8 +17,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/number_format.hpp"
-#include "engine/output/atomic_file.hpp"
+#include "engine/common/atomic_file.hpp"
+#include "engine/common/number_format.hpp"
 #include "engine/output/vtu_writer.hpp"
 
 namespace rockdd {

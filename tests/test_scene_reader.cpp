@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/scene/scene_reader.hpp"
 
 namespace rockdd {
@@ -53,7 +53,7 @@ TEST(SceneReader, ReadsEveryFieldOfTheExample) {
   EXPECT_EQ(s.file, fs::absolute(file).lexically_normal());
   EXPECT_EQ(s.name, "sliding-block");
   EXPECT_EQ(s.analysis, Analysis::dynamic);
-  EXPECT_EQ(s.plane, PlaneMode::stress);
+  EXPECT_EQ(s.plane, PlaneKind::stress);
   EXPECT_DOUBLE_EQ(s.thickness, 1.0);
   EXPECT_DOUBLE_EQ(s.gravity[0], 0.0);
   EXPECT_DOUBLE_EQ(s.gravity[1], -10.0);
@@ -328,7 +328,7 @@ fields = []
 )";
   const Scene s = parse_scene(text, kScenes / "good" / "kinds.toml");
   EXPECT_EQ(s.analysis, Analysis::quasi_static);
-  EXPECT_EQ(s.plane, PlaneMode::strain);
+  EXPECT_EQ(s.plane, PlaneKind::strain);
   EXPECT_EQ(s.time.integrator, Integrator::newmark);
   EXPECT_EQ(*s.time.steps, 50);
   EXPECT_DOUBLE_EQ(s.time.dt_min, 2e-4 * 1e-6);
@@ -357,7 +357,7 @@ TEST(SceneReader, OverridesReplaceValuesIncludingArrayOfTablesEntries) {
   EXPECT_DOUBLE_EQ(s.time.dt, 1e-4);
   EXPECT_DOUBLE_EQ(*s.mesh.element_size, 5e-4);
   EXPECT_EQ(s.analysis, Analysis::quasi_static);  // a bare word is taken as a string
-  EXPECT_EQ(s.plane, PlaneMode::strain);          // so is a quoted TOML string
+  EXPECT_EQ(s.plane, PlaneKind::strain);          // so is a quoted TOML string
   EXPECT_DOUBLE_EQ(s.materials[0].young, 2e10);
   EXPECT_DOUBLE_EQ(*s.boundaries[1].velocity_x, 0.0);
   EXPECT_DOUBLE_EQ(*s.boundaries[1].velocity_y, -1e-5);

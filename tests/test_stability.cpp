@@ -9,7 +9,7 @@
 #include <fstream>
 #include <numbers>
 
-#include "engine/number_format.hpp"
+#include "engine/common/number_format.hpp"
 #include "test_support.hpp"
 
 namespace rockdd {

@@ -13,9 +13,8 @@
 #include <string>
 #include <vector>
 
-#include "engine/rockdd.hpp"
+#include "engine/engine.hpp"
 #include "engine/scene/scene_reader.hpp"
-#include "engine/supported_features.hpp"
 
 namespace rockdd::test {
 
@@ -40,9 +39,7 @@ inline Scene scene_from_text(const std::string& text, const std::filesystem::pat
                              const std::vector<std::string>& overrides = {}) {
   const auto file = dir / "scene.toml";
   std::ofstream(file) << text;
-  Scene scene = read_scene(file, overrides);
-  check_supported_features(scene);
-  return scene;
+  return read_scene(file, overrides);
 }
 
 /// What a test run leaves: the final model, the result and history.csv by column.
@@ -82,7 +79,6 @@ inline SceneRun run_data_scene(const std::string& name,
                                const std::vector<std::string>& overrides = {}, int threads = 0) {
   TempDir dir;
   Scene scene = read_scene(data_file(name), overrides);
-  check_supported_features(scene);
   return run_scene(scene, dir.path(), threads);
 }
 

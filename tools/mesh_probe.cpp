@@ -16,10 +16,10 @@
 #include <string>
 #include <vector>
 
-#include "engine/content_hash.hpp"
-#include "engine/errors.hpp"
+#include "engine/common/content_hash.hpp"
+#include "engine/common/errors.hpp"
+#include "engine/engine.hpp"
 #include "engine/mesh/mesh.hpp"
-#include "engine/rockdd.hpp"
 
 namespace {
 

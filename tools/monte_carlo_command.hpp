@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/rockdd.hpp"
+#include "engine/engine.hpp"
 
 namespace rockdd::cli {
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/rockdd.hpp"
+#include "engine/engine.hpp"
 
 namespace rockdd::cli {
 

@@ -13,8 +13,8 @@
 #include <utility>
 #include <vector>
 
-#include "engine/process_clock.hpp"
-#include "engine/rockdd.hpp"
+#include "engine/common/process_clock.hpp"
+#include "engine/engine.hpp"
 #include "tools/monte_carlo_command.hpp"
 #ifdef ROCKDD_HAVE_MPI
 #include "tools/mpi_ensemble.hpp"

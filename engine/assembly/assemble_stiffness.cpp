@@ -19,7 +19,7 @@ void assemble_stiffness(const Model& model, const ElementColoring& coloring,
   });
   for_each_element_by_color(coloring, [&](std::int32_t e) {
     double ku[kElementUpperEntries];
-    element_stiffness(model, e, damaged_young(model.young[e], model.damage[e]), ku);
+    element_stiffness(model, e, kernels::damaged_modulus(model.young[e], model.damage[e]), ku);
     scatter_element_matrix(layout, e, ku, values);
   });
   if (mass_coefficient != 0.0) {

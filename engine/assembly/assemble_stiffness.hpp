@@ -21,7 +21,7 @@ inline void element_stiffness(const Model& model, std::int32_t e, double young,
   double xy[6];
   gather_element(model.conn, e, model.X, xy);
   const kernels::IsotropicModuli d =
-      kernels::isotropic_moduli(young, model.poisson[e], plane_kind(model.plane));
+      kernels::isotropic_moduli(young, model.poisson[e], model.plane);
   kernels::cst_isotropic_stiffness_upper(xy, d, model.thickness, ku);
   if (model.rotation.empty() || model.rotation[e] == 0.0) return;
   double k[36];

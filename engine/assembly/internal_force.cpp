@@ -26,8 +26,8 @@ inline void element_internal_force(const Model& model, std::int32_t e, std::span
   const kernels::Rotation turn =
       corotational ? kernels::element_rotation_factor(xy, x) : kernels::Rotation{};
   if (corotational) kernels::corotated_displacement(xy, x, turn, ue);
-  kernels::elasticity_matrix(damaged_young(model.young[e], model.damage[e]), model.poisson[e],
-                             plane, d);
+  kernels::elasticity_matrix(kernels::damaged_modulus(model.young[e], model.damage[e]),
+                             model.poisson[e], plane, d);
   kernels::cst_strain(xy, ue, eps);
   kernels::cst_stress(d, eps, sig);
   kernels::cst_internal_force(xy, sig, model.thickness, f);
@@ -56,7 +56,7 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
                             std::span<const double> u, std::span<double> strain,
                             std::span<double> stress, std::span<double> f_int, bool corotational,
                             std::span<double> element_force) {
-  const kernels::PlaneKind plane = plane_kind(model.plane);
+  const kernels::PlaneKind plane = model.plane;
   std::fill(f_int.begin(), f_int.end(), 0.0);
   // Chunks of one colour share no node, so each node sums its elements in the colouring's order
   // whatever the threads do (sum_element_forces relies on that order).
@@ -72,7 +72,7 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
 void refresh_element_forces(const Model& model, std::span<const double> u,
                             std::span<const std::int32_t> elements, std::span<double> element_force,
                             bool corotational) {
-  const kernels::PlaneKind plane = plane_kind(model.plane);
+  const kernels::PlaneKind plane = model.plane;
   for (const std::int32_t e : elements) {
     double eps[3], sig[3];
     element_internal_force(model, e, u, plane, corotational, eps, sig,

@@ -22,11 +22,11 @@ void modulus_change_terms(const Model& model, std::span<const std::int32_t> equa
                           LowRankTerms& removed) {
   added.clear();
   removed.clear();
-  const kernels::PlaneKind plane = plane_kind(model.plane);
+  const kernels::PlaneKind plane = model.plane;
   for (const std::int32_t e : changed) {
     // The same moduli assemble_stiffness uses, so the terms are its difference exactly.
-    const double before = damaged_young(model.young[e], damage_before[e]);
-    const double after = damaged_young(model.young[e], model.damage[e]);
+    const double before = kernels::damaged_modulus(model.young[e], damage_before[e]);
+    const double after = kernels::damaged_modulus(model.young[e], model.damage[e]);
     if (after == before) continue;  // both at the floor
     double xy[6], d[9], w[18];
     gather_element(model.conn, e, model.X, xy);
@@ -54,8 +54,8 @@ void add_modulus_change(const Model& model, const StiffnessLayout& layout,
                         std::span<const std::int32_t> changed,
                         std::span<const double> damage_before, std::span<double> values) {
   for (const std::int32_t e : changed) {
-    const double before = damaged_young(model.young[e], damage_before[e]);
-    const double after = damaged_young(model.young[e], model.damage[e]);
+    const double before = kernels::damaged_modulus(model.young[e], damage_before[e]);
+    const double after = kernels::damaged_modulus(model.young[e], model.damage[e]);
     if (after == before) continue;
     double ku[kElementUpperEntries];
     element_stiffness(model, e, after - before, ku);

@@ -7,19 +7,18 @@
 #include <tbb/parallel_reduce.h>
 
 #include "engine/assembly/element_state.hpp"
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 
 namespace rockdd {
 
-DamageStage::DamageStage(const Scene& scene, const Model& model) : plane_(plane_kind(model.plane)) {
+DamageStage::DamageStage(const Scene& scene, const Model& model) : plane_(model.plane) {
   for (const MaterialSpec& m : scene.materials) {
     kernels::DamageParams p;
     p.poisson = m.poisson;
     p.lambda = m.residual;
     p.eta = m.ultimate_strain;
-    p.onset = m.tension_onset == TensionOnset::strain ? kernels::TensionOnset::strain
-                                                      : kernels::TensionOnset::stress;
-    p.floor = kDamagedStiffnessFloor;
+    p.onset = m.tension_onset;
+    p.floor = kernels::kStiffnessFloor;
     params_.push_back(p);
     damageable_.push_back(m.has_damage() ? 1 : 0);
     detach_at_.push_back(m.detach_at_damage);

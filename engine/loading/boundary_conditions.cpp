@@ -5,7 +5,7 @@
 #include <span>
 #include <string>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/loading/named_nodes.hpp"
 
 namespace rockdd {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <string>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/loading/named_nodes.hpp"
 #include "kernels/cst.hpp"
 

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 
 namespace rockdd {
 namespace {

@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/mesh/builtin_shapes.hpp"
 #include "engine/mesh/finish_mesh.hpp"
 #include "engine/mesh/gmsh_model_reader.hpp"

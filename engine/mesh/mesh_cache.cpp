@@ -15,10 +15,10 @@
 #include <utility>
 #include <vector>
 
-#include "engine/content_hash.hpp"
+#include "engine/common/atomic_file.hpp"
+#include "engine/common/content_hash.hpp"
 #include "engine/mesh/gmsh_module.hpp"
 #include "engine/mesh/mesh_errors.hpp"
-#include "engine/output/atomic_file.hpp"
 #include "engine/scene/mesh_budget.hpp"
 
 #ifndef ROCKDD_MESH_CODE_HASH

@@ -2,7 +2,7 @@
 
 #include <charconv>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 
 namespace rockdd {
 

@@ -1,5 +1,5 @@
 #pragma once
-#include "engine/number_format.hpp"
+#include "engine/common/number_format.hpp"
 // How mesh problems are worded: the scene file and key they belong to, and points as text.
 #include <string>
 

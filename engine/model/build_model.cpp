@@ -3,7 +3,7 @@
 #include <numeric>
 #include <string>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/mesh/mesh.hpp"
 #include "engine/model/block_topology.hpp"
 #include "engine/model/edge_adjacency.hpp"

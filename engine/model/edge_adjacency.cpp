@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 
 namespace rockdd {
 

@@ -22,7 +22,7 @@ struct NamedSets {
 
 /// Nodes, elements, blocks and materials of one simulation.
 struct Model {
-  PlaneMode plane = PlaneMode::stress;
+  PlaneKind plane = PlaneKind::stress;
   double thickness = 1.0;
 
   // Nodes.

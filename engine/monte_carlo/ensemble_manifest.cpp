@@ -4,9 +4,9 @@
 #include <fstream>
 #include <iterator>
 
-#include "engine/content_hash.hpp"
-#include "engine/errors.hpp"
-#include "engine/output/atomic_file.hpp"
+#include "engine/common/atomic_file.hpp"
+#include "engine/common/content_hash.hpp"
+#include "engine/common/errors.hpp"
 
 namespace rockdd {
 namespace {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <map>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/monte_carlo/ensemble_manifest.hpp"
 #include "engine/monte_carlo/ensemble_table.hpp"
 #include "engine/monte_carlo/monte_carlo.hpp"

@@ -13,8 +13,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "engine/errors.hpp"
-#include "engine/output/atomic_file.hpp"
+#include "engine/common/atomic_file.hpp"
+#include "engine/common/errors.hpp"
 
 namespace rockdd {
 namespace {

@@ -3,10 +3,10 @@
 #include <algorithm>
 #include <map>
 
-#include "engine/errors.hpp"
+#include "engine/common/atomic_file.hpp"
+#include "engine/common/errors.hpp"
+#include "engine/common/number_format.hpp"
 #include "engine/monte_carlo/ensemble_statistics.hpp"
-#include "engine/number_format.hpp"
-#include "engine/output/atomic_file.hpp"
 
 namespace rockdd {
 namespace {

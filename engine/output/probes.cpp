@@ -7,10 +7,10 @@
 #include <numbers>
 #include <sstream>
 
-#include "engine/errors.hpp"
+#include "engine/common/atomic_file.hpp"
+#include "engine/common/errors.hpp"
+#include "engine/common/number_format.hpp"
 #include "engine/loading/named_nodes.hpp"
-#include "engine/number_format.hpp"
-#include "engine/output/atomic_file.hpp"
 #include "kernels/cst.hpp"
 #include "kernels/principal.hpp"
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "engine/number_format.hpp"
+#include "engine/common/number_format.hpp"
 #include "engine/output/vtu_writer.hpp"
 #include "kernels/principal.hpp"
 

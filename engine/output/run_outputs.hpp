@@ -10,8 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "engine/common/atomic_file.hpp"
 #include "engine/model/model.hpp"
-#include "engine/output/atomic_file.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace rockdd {

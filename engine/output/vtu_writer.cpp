@@ -5,8 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "engine/number_format.hpp"
-#include "engine/output/atomic_file.hpp"
+#include "engine/common/atomic_file.hpp"
+#include "engine/common/number_format.hpp"
 
 namespace rockdd {
 namespace {

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "engine/number_format.hpp"
+#include "engine/common/number_format.hpp"
 
 namespace rockdd {
 

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "engine/number_format.hpp"
+#include "engine/common/number_format.hpp"
 
 namespace rockdd {
 

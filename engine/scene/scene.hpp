@@ -10,13 +10,14 @@
 #include <vector>
 
 #include "engine/scene/mesh_algorithm.hpp"
+#include "kernels/material.hpp"
 
 namespace rockdd {
 
 enum class Analysis { static_, quasi_static, dynamic };
-enum class PlaneMode { stress, strain };
+using kernels::PlaneKind;
+using kernels::TensionOnset;
 enum class Integrator { dda, newmark };
-enum class TensionOnset { stress, strain };
 
 using Vec2 = std::array<double, 2>;
 
@@ -158,7 +159,7 @@ struct Scene {
   std::filesystem::path file;  // the scene file, absolute
   std::string name;
   Analysis analysis = Analysis::static_;
-  PlaneMode plane = PlaneMode::stress;
+  PlaneKind plane = PlaneKind::stress;
   double thickness = 1.0;
   Vec2 gravity{0.0, 0.0};
   bool has_time = false;  // false: static scene without [time]

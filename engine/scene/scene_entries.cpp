@@ -114,7 +114,7 @@ void read_heterogeneity(TableReader& t, MaterialSpec& m) {
   if (!t.has("weibull_size_scaling")) t.record_default("weibull_size_scaling", "false");
 }
 
-MaterialSpec read_material(TableReader& t, PlaneMode plane) {
+MaterialSpec read_material(TableReader& t, PlaneKind plane) {
   t.allow_only({"body", "density", "young", "poisson", "tensile_strength", "cohesion",
                 "compressive_strength", "friction_angle", "residual", "ultimate_strain",
                 "fracture_energy", "tension_onset", "detach_at_damage", "homogeneity",
@@ -125,7 +125,7 @@ MaterialSpec read_material(TableReader& t, PlaneMode plane) {
   m.density = t.required_number("density", above(0));
   m.young = t.required_number("young", above(0));
   // Plane stress tolerates the incompressible limit; plane strain's D matrix divides by 1 - 2 nu.
-  m.poisson = t.required_number("poisson", between(-1, false, 0.5, plane == PlaneMode::stress));
+  m.poisson = t.required_number("poisson", between(-1, false, 0.5, plane == PlaneKind::stress));
   read_damage(t, m);
   read_heterogeneity(t, m);
   return m;
@@ -344,7 +344,7 @@ ProbeSpec read_probe(TableReader& t) {
 
 }  // namespace
 
-std::vector<MaterialSpec> read_materials(TableReader& root, PlaneMode plane) {
+std::vector<MaterialSpec> read_materials(TableReader& root, PlaneKind plane) {
   auto tables = table_array(root, "material");
   if (tables.empty()) {
     root.fail("material",

@@ -9,7 +9,7 @@
 namespace rockdd {
 
 /// [[material]]: at least one; one per body; poisson < 0.5 strictly in plane strain.
-std::vector<MaterialSpec> read_materials(TableReader& root, PlaneMode plane);
+std::vector<MaterialSpec> read_materials(TableReader& root, PlaneKind plane);
 
 /// [[initial]]: at most one per body.
 std::vector<InitialSpec> read_initial(TableReader& root);

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string_view>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/scene/table_reader.hpp"
 
 namespace rockdd {

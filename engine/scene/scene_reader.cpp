@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/scene/scene_entries.hpp"
 #include "engine/scene/scene_overrides.hpp"
 #include "engine/scene/scene_sections.hpp"
@@ -53,10 +53,10 @@ Scene parse_scene(std::string_view text, const fs::path& file,
   scene.loads = read_loads(root);
   scene.probes = read_probes(root);
   check_softening_probe(root, scene);
-  scene.fracture =
-      read_fracture(root, std::any_of(scene.materials.begin(), scene.materials.end(),
-                                      [](const MaterialSpec& m) { return m.has_damage(); }),
-                    scene.analysis);
+  scene.fracture = read_fracture(root,
+                                 std::any_of(scene.materials.begin(), scene.materials.end(),
+                                             [](const MaterialSpec& m) { return m.has_damage(); }),
+                                 scene.analysis);
   scene.solver = read_solver(root);
   scene.output = read_output(root);
   scene.defaults = std::move(defaults);

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/scene/geometry_limits.hpp"
 #include "engine/scene/mesh_algorithm.hpp"
 #include "engine/scene/mesh_budget.hpp"
@@ -227,8 +227,8 @@ Scene read_scene_header(TableReader& root) {
                    : analysis == "quasi-static" ? Analysis::quasi_static
                                                 : Analysis::static_;
   scene.plane = table->choice_or("plane", {"stress", "strain"}, "stress") == "strain"
-                    ? PlaneMode::strain
-                    : PlaneMode::stress;
+                    ? PlaneKind::strain
+                    : PlaneKind::stress;
   scene.thickness = table->number_or("thickness", 1.0, above(0));
   if (auto gravity = table->vec2("gravity")) {
     scene.gravity = *gravity;

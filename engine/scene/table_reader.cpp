@@ -4,7 +4,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 
 namespace rockdd {
 namespace {

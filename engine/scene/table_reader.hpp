@@ -1,5 +1,5 @@
 #pragma once
-#include "engine/number_format.hpp"
+#include "engine/common/number_format.hpp"
 // TableReader: typed access to one TOML table of a scene, where every error names the
 // scene file and line, the full key path, and what was expected against what was found.
 #include <toml++/toml.h>

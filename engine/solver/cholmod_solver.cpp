@@ -15,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/solver/serial_openmp_regions.hpp"
 
 #ifndef ROCKDD_SOLVER_CODE_HASH

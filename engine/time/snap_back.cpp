@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "kernels/cst.hpp"
+
 namespace rockdd {
 
 bool cascade_calls_for_inertia(const FractureSpec& fracture, Analysis analysis, int pass) {
@@ -25,10 +27,9 @@ double snap_back_time_step(const Scene& scene, const Model& model) {
                                                        model.X[2 * b + 1] - model.X[2 * a + 1]));
     }
     const double height = 2.0 * model.area0[e] / longest_edge;
-    const double nu = model.poisson[e];
-    const double modulus = model.plane == PlaneMode::strain
-                               ? model.young[e] * (1.0 - nu) / ((1.0 + nu) * (1.0 - 2.0 * nu))
-                               : model.young[e] / (1.0 - nu * nu);
+    // The in-plane dilatational wave's modulus: D11 of the element's elasticity.
+    const double modulus =
+        kernels::isotropic_moduli(model.young[e], model.poisson[e], model.plane).normal;
     shortest = std::min(shortest, height / std::sqrt(modulus / model.density[e]));
   }
   return kTransitFraction * shortest;

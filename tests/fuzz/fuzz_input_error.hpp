@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 
 namespace rockdd::fuzz {
 

@@ -8,11 +8,11 @@
 #include <string>
 #include <vector>
 
-#include "engine/errors.hpp"
+#include "engine/common/errors.hpp"
 #include "engine/model/model.hpp"
 #include "engine/monte_carlo/monte_carlo.hpp"
+#include "engine/report/setup_report.hpp"
 #include "engine/scene/scene.hpp"
-#include "engine/setup_report.hpp"
 #include "engine/simulation.hpp"
 
 namespace rockdd {

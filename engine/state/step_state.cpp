@@ -1,4 +1,4 @@
-#include "engine/step_state.hpp"
+#include "engine/state/step_state.hpp"
 
 #include "engine/damage/detachment.hpp"
 

@@ -1,4 +1,4 @@
-#include "engine/run_stats.hpp"
+#include "engine/report/run_stats.hpp"
 
 namespace rockdd {
 

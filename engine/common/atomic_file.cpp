@@ -1,4 +1,4 @@
-#include "engine/output/atomic_file.hpp"
+#include "engine/common/atomic_file.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -1,18 +1,15 @@
 #include <utility>
 
+#include "engine/common/timers.hpp"
+#include "engine/engine.hpp"
 #include "engine/mesh/mesh_cache.hpp"
 #include "engine/model/element_strength.hpp"
-#include "engine/rockdd.hpp"
 #include "engine/scene/scene_reader.hpp"
-#include "engine/supported_features.hpp"
-#include "engine/timers.hpp"
 
 namespace rockdd {
 
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  Scene scene = read_scene(file, overrides);
-  check_supported_features(scene);
-  return scene;
+  return read_scene(file, overrides);
 }
 
 BuiltModel build_scene_model_reported(const Scene& scene) {

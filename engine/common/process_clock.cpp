@@ -1,4 +1,4 @@
-#include "engine/process_clock.hpp"
+#include "engine/common/process_clock.hpp"
 
 #include <time.h>
 #include <unistd.h>
