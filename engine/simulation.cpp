@@ -22,6 +22,7 @@
 #include "engine/loading/external_loads.hpp"
 #include "engine/mesh/mesh_cache.hpp"
 #include "engine/output/probes.hpp"
+#include "engine/solver/linear_system.hpp"
 #include "engine/time/rotation_correction.hpp"
 #include "engine/time/snap_back.hpp"
 #include "kernels/damage_law.hpp"
@@ -82,7 +83,8 @@ Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> me
       analysis_(scene_.analysis),
       integrator_(scene_.time.integrator),
       model_(std::move(model)),
-      mesh_slot_(std::move(mesh_slot)) {
+      system_(std::make_unique<LinearSystem>(timers_, std::move(mesh_slot),
+                                             scene_.solver.factor_updates)) {
   ScopedTimer timer(setup_timers_.other);
   // Blocks that move turn: their strain is measured in co-rotated frames. A static analysis
   // restrains every block and solves once, small strain (f_int = K u exactly).
@@ -134,86 +136,24 @@ Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> me
   }
 }
 
-Simulation::~Simulation() {
-  try {
-    await_analysis();
-  } catch (...) {  // NOLINT(bugprone-empty-catch): a failed analysis no one will use
-  }
-}
+Simulation::~Simulation() = default;
 
 void Simulation::rebuild_layout() {
-  await_analysis();  // the solver's last analysis is replaced
-  ScopedTimer timer(timers_.layout);
   std::vector<std::int32_t> conn = model_.conn;
   if (contact_) {
     const std::vector<std::int32_t> triples = contact_->triples();
     conn.insert(conn.end(), triples.begin(), triples.end());
   }
-  layout_ = build_sparsity_pattern(conn, model_.num_nodes(), bc_.equation);
-  // CHOLMOD's analysis needs the pattern alone: it runs beside the scatter map and the
-  // assembly (the same analysis whatever runs beside it), and the solver waits for it before
-  // it factorizes.
-  if (bc_.num_equations > 0) {
-    analysis_pending_ = true;
-    analysis_task_.run([this] {
-      analyze_layout();
-      mesh_slot_.reset();  // later layouts follow the contacts: computed each time, not stored
-    });
-  } else {
-    mesh_slot_.reset();
-  }
-  build_scatter_map(conn, bc_.equation, layout_);
-  values_.assign(static_cast<std::size_t>(layout_.pattern.nnz()), 0.0);
-  if (contact_) base_values_.assign(values_.size(), 0.0);
-  factorized_mass_coefficient_ = -1.0;  // the values must be assembled into the new pattern
-}
-
-void Simulation::await_analysis() {
-  if (!analysis_pending_) return;
-  ScopedTimer timer(timers_.analysis);
-  analysis_pending_ = false;
-  analysis_task_.wait();  // rethrows what the analysis threw
-}
-
-void Simulation::analyze_layout() {
-  const SparsityPattern& pattern = layout_.pattern;
-  if (!mesh_slot_) {
-    solver_.analyze(pattern);
-    return;
-  }
-  // The stored entry holds the pattern it was computed for: another restraint, contact or
-  // model of the same mesh is a miss, never another pattern's ordering.
-  const std::string key = solver_.ordering_key();
-  if (std::optional<CachedOrdering> stored =
-          read_cached_ordering(*mesh_slot_, key, pattern.col_ptr, pattern.row_idx)) {
-    if (const std::optional<FillOrdering> method = fill_ordering_from_name(stored->method)) {
-      solver_.analyze_given(pattern, stored->perm, *method);
-      ordering_cache_ = MeshCacheOutcome::hit;
-      return;
-    }
-  }
-  solver_.analyze(pattern);
-  write_cached_ordering(
-      *mesh_slot_, key, pattern.col_ptr, pattern.row_idx,
-      {solver_.permutation(), std::string(fill_ordering_name(solver_.stats().ordering))});
-  ordering_cache_ = MeshCacheOutcome::miss;
+  system_->rebuild(conn, model_.num_nodes(), bc_.equation, bc_.num_equations, contact_ != nullptr);
 }
 
 void Simulation::prepare_system(double mass_coefficient) {
-  if (mass_coefficient == factorized_mass_coefficient_ || bc_.num_equations == 0) return;
-  {
-    ScopedTimer timer(timers_.assembly);
-    std::span<double> target =
-        contact_ ? std::span<double>(base_values_) : std::span<double>(values_);
-    assemble_stiffness(model_, coloring_, layout_, bc_.equation, mass_coefficient, target);
-    fragments_.add_stiffness(bc_.equation, layout_.diagonal, target);
-    values_incremental_ = false;
-  }
-  factorized_mass_coefficient_ = mass_coefficient;
-  if (contact_) return;  // factorized in every open-close iteration, with the springs
-  await_analysis();
-  ScopedTimer timer(timers_.factorization);
-  solver_.factorize(values_.data());
+  system_->prepare(model_, coloring_, bc_.equation, mass_coefficient,
+                   {fragments_.dofs(), fragments_.stiffness()});
+}
+
+const SolverStats& Simulation::solver_stats() const {
+  return system_->solver_stats();
 }
 
 void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool factor_current) {
@@ -221,16 +161,12 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
   if (contact_) {
     {
       ScopedTimer timer(timers_.contact);
-      std::copy(base_values_.begin(), base_values_.end(), values_.begin());
       std::fill(state_.f_contact.begin(), state_.f_contact.end(), 0.0);
       for (std::size_t d = 0; d < num_dofs; ++d)
         state_.positions[d] = model_.X[d] + state_.u_trial[d];
-      contact_->add_springs(state_.positions, layout_, model_.num_elements(), values_,
-                            state_.f_contact);
+      contact_->add_spring_forces(state_.positions, state_.f_contact);
     }
-    await_analysis();
-    ScopedTimer timer(timers_.factorization);
-    if (bc_.num_equations > 0 && !factor_current) solver_.factorize(values_.data());
+    system_->add_contact_springs(contact_->spring_matrices(model_.num_elements()), factor_current);
   }
   for (std::size_t d = 0; d < num_dofs; ++d) {
     const std::int32_t eq = bc_.equation[d];
@@ -241,10 +177,7 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
                      m * (inertia.velocity_coefficient * model_.v[d] +
                           inertia.acceleration_coefficient * state_.acceleration[d]);
   }
-  if (bc_.num_equations > 0) {
-    ScopedTimer timer(timers_.solve);
-    solve_system();
-  }
+  system_->solve(state_.rhs);
   for (std::size_t d = 0; d < num_dofs; ++d) {
     if (bc_.equation[d] >= 0)
       state_.du[d] = state_.u_trial[d] - model_.u[d] + state_.rhs[bc_.equation[d]];
@@ -270,7 +203,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
     energy_.begin_attempt();
     if (retries > 0 && model_.damage != committed_damage_) {
       model_.damage = committed_damage_;
-      factorized_mass_coefficient_ = -1.0;  // the moduli changed back
+      system_->invalidate();  // the moduli changed back
     }
     // Supports of parts that the last attempt's cascade cut loose end with it: the restraint
     // of the committed state holds again.
@@ -278,11 +211,9 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
       fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness,
                                      scene_.fracture.loose_part_support);
       loose_parts_held_ = false;
-      factorized_mass_coefficient_ = -1.0;
+      system_->invalidate();
     }
-    // Each step starts from a freshly assembled matrix: folded changes do not accumulate
-    // round-off from step to step.
-    if (values_incremental_) factorized_mass_coefficient_ = -1.0;
+    system_->drop_folded_changes();
     if (analysis_ == Analysis::dynamic) {
       ScopedTimer timer(timers_.damage);
       state_.committed_strain.resize(model_.strain.size());
@@ -305,7 +236,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
   // kFrameTolerance since K was assembled (the internal force always uses the exact frames).
   if (corotational_ && largest_rotation_change(model_, model_.u) > kFrameTolerance) {
     update_element_rotations(model_, model_.u);
-    factorized_mass_coefficient_ = -1.0;
+    system_->invalidate();
   }
   prepare_system(inertia.mass_coefficient);
 
@@ -398,7 +329,9 @@ double Simulation::measure_snap_back(int pass, bool settle_start, const DamageCh
 bool Simulation::prepare_next_pass(double mass_coefficient, bool grown) {
   changed_elements(model_, damage_before_, state_.changed_elements);
   const bool restraint_changed = hold_parts_cut_loose();
-  const bool folded = !restraint_changed && grown && fold_modulus_change(mass_coefficient);
+  const bool folded = !restraint_changed && grown &&
+                      system_->fold_modulus_change(model_, bc_.equation, state_.changed_elements,
+                                                   damage_before_, mass_coefficient);
   prepare_system(mass_coefficient);  // nothing left to do once folded
   // The next solve's internal force at u_trial under the new moduli: bitwise what a full
   // recomputation gives (the same kernel per element, summed in the same order).
@@ -441,8 +374,7 @@ void Simulation::record_first_reaction() {
   if (contact_) {
     for (std::size_t d = 0; d < num_dofs; ++d)
       state_.positions[d] = model_.X[d] + model_.u[d] + state_.du[d];
-    contact_->add_springs(state_.positions, layout_, model_.num_elements(), {},
-                          state_.reaction_first);
+    contact_->add_spring_forces(state_.positions, state_.reaction_first);
   }
   for (std::size_t d = 0; d < num_dofs; ++d)
     state_.reaction_first[d] =
@@ -459,7 +391,7 @@ DamageChange Simulation::evaluate_damage() {
   damage_before_ = model_.damage;
   const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band);
   if (change.grown > 0) {
-    factorized_mass_coefficient_ = -1.0;  // the moduli changed
+    system_->invalidate();  // the moduli changed
     // Without carried velocity the pass drops the moduli at its own strain and re-solves from
     // there. A dynamic step instead integrates the whole step with the new moduli, from the
     // committed state: that is where its modulus drop takes the energy.
@@ -522,21 +454,8 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
     // Factor reuse: the springs that switched are a low-rank change of K. When updating the
     // factor is expected to cost less than refactorizing (docs/benchmarks.md), the
     // next iteration solves with the updated factor; a downdate that fails falls back.
-    factor_current = false;
-    if (bc_.num_equations > 0) {
-      ScopedTimer timer(timers_.factorization);
-      contact_->spring_changes(before, bc_.equation, springs_added_, springs_removed_);
-      const std::int64_t columns = springs_added_.num_columns() + springs_removed_.num_columns();
-      if (scene_.solver.factor_updates && solver_.update_expected_faster(columns)) {
-        try {
-          if (springs_added_.num_columns() > 0) solver_.update(springs_added_, true);
-          if (springs_removed_.num_columns() > 0) solver_.update(springs_removed_, false);
-          factor_current = true;
-        } catch (const RunFailure&) {
-          factor_current = false;  // refactorized from the springs in the next iteration
-        }
-      }
-    }
+    const ContactStage::SpringChanges& switched = contact_->spring_changes(before, bc_.equation);
+    factor_current = system_->update_contact_springs(switched.added, switched.removed);
     if (iterations >= limit) {
       stats_.open_close_iterations += iterations;
       control.reject(step, "the open-close iteration did not settle in " + std::to_string(limit) +
@@ -548,28 +467,6 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
     stats_.open_close_iterations += iterations;
     stats_.max_open_close_per_step = std::max<long>(stats_.max_open_close_per_step, iterations);
   }
-  return true;
-}
-
-bool Simulation::fold_modulus_change(double mass_coefficient) {
-  if (!scene_.solver.factor_updates || bc_.num_equations == 0) return false;
-  await_analysis();
-  ScopedTimer timer(timers_.factorization);
-  modulus_change_terms(model_, bc_.equation, state_.changed_elements, damage_before_, moduli_added_,
-                       moduli_removed_);
-  const std::int64_t columns = moduli_added_.num_columns() + moduli_removed_.num_columns();
-  if (!solver_.update_expected_faster(columns)) return false;
-  try {
-    if (moduli_removed_.num_columns() > 0) solver_.update(moduli_removed_, false);
-    if (moduli_added_.num_columns() > 0) solver_.update(moduli_added_, true);
-  } catch (const RunFailure&) {
-    return false;  // the factor is unusable: the caller reassembles and refactorizes
-  }
-  add_modulus_change(model_, layout_, state_.changed_elements, damage_before_,
-                     contact_ ? base_values_ : values_);
-  factorized_mass_coefficient_ = mass_coefficient;  // the values are current again
-  values_incremental_ = true;
-  ++stats_.folded_damage_passes;
   return true;
 }
 
@@ -591,48 +488,8 @@ bool Simulation::hold_parts_cut_loose() {
   for (std::size_t d = 0; d < trial_increment.size(); ++d)
     trial_increment[d] = state_.u_trial[d] - model_.u[d];
   fragments_.forces(trial_increment, state_.restraint_force);
-  factorized_mass_coefficient_ = -1.0;  // K takes the new springs
+  system_->invalidate();  // K takes the new springs
   return true;
-}
-
-void Simulation::solve_system() {
-  double* x = state_.rhs.data();
-  if (solver_.supernodal()) {  // a fresh factorization: as accurate as CHOLMOD makes it
-    solver_.solve(x, x);
-    return;
-  }
-  // The factor carries low-rank updates, whose round-off grows with each downdate: the
-  // solution is checked against the assembled matrix by its normwise backward error
-  // |b - A x| / (max|A| |x| + |b|), max norm (an SPD matrix's largest entry is on its
-  // diagonal), and the matrix refactorized when that exceeds kTrusted. Iterative refinement
-  // with the updated factor was tried and dropped: on the UCS, the disk and the sliding block
-  // every solve was either already below 64 eps or did not improve in 30 refinements
-  // (docs/benchmarks.md, "Damage passes folded into the factor", for the threshold's table).
-  constexpr double kTrusted = 1e-10;
-  const auto n = static_cast<std::size_t>(bc_.num_equations);
-  check_rhs_.assign(x, x + n);
-  check_residual_.resize(n);
-  solver_.solve(x, x);
-  const SparsityPattern& a = layout_.pattern;
-  symmetric_residual(a, values_, {x, n}, check_rhs_, check_residual_);
-  double largest_a = 0.0, largest_b = 0.0, largest_x = 0.0, residual = 0.0;
-  for (std::int32_t j = 0; j < a.n; ++j)
-    largest_a =
-        std::max(largest_a, std::abs(values_[static_cast<std::size_t>(a.col_ptr[j + 1] - 1)]));
-  for (std::size_t i = 0; i < n; ++i) {
-    largest_b = std::max(largest_b, std::abs(check_rhs_[i]));
-    largest_x = std::max(largest_x, std::abs(x[i]));
-    residual = std::max(residual, std::abs(check_residual_[i]));
-  }
-  const double scale = largest_a * largest_x + largest_b;
-  if (!(scale > 0.0) || residual <= kTrusted * scale) return;
-  ++stats_.untrusted_updated_solves;
-  {
-    ScopedTimer timer(timers_.factorization);
-    solver_.factorize(values_.data());
-  }
-  std::copy(check_rhs_.begin(), check_rhs_.end(), x);
-  solver_.solve(x, x);
 }
 
 void Simulation::commit_step(double dt) {
@@ -662,7 +519,7 @@ void Simulation::commit_step(double dt) {
     // The step's contact forces before the commit folds the step's slip into the shear
     // springs' anchors: after it they would count that slip twice.
     std::fill(state_.f_contact.begin(), state_.f_contact.end(), 0.0);
-    contact_->add_springs(state_.positions, layout_, model_.num_elements(), {}, state_.f_contact);
+    contact_->add_spring_forces(state_.positions, state_.f_contact);
     contact_->commit(state_.positions);
   }
   fragments_.forces(state_.du, state_.restraint_force);
@@ -762,7 +619,7 @@ void Simulation::follow_cascade_with_inertia(long step, double time, double end_
   loose_parts_held_ = false;
   std::fill(state_.restraint_force.begin(), state_.restraint_force.end(), 0.0);
   if (contact_) contact_->set_analysis(analysis_);  // same contacts, same pattern
-  factorized_mass_coefficient_ = -1.0;
+  system_->invalidate();
   // The last pass's modulus drop left the committed state out of balance.
   balance_acceleration();
 }
@@ -994,7 +851,7 @@ RunResult Simulation::run(const RunOptions& options) {
     }
   }
   try {
-    await_analysis();  // the summary reads the solver
+    system_->await_analysis();  // the summary reads the solver
   } catch (const std::exception& failure) {
     if (result.ok) {
       result.ok = false;
@@ -1057,6 +914,8 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
   s["wall_seconds"] = wall_seconds;
   s["analysis"] = analysis_name(scene_.analysis);  // as the scene gives it
   stats_.write(s);
+  s["folded_damage_passes"] = system_->stats().folded_damage_passes;
+  s["untrusted_updated_solves"] = system_->stats().untrusted_updated_solves;
   s["open_close_shear_swings_settled"] = contact_ ? contact_->shear_swings_settled() : 0;
   s["open_close_normal_swings_settled"] = contact_ ? contact_->normal_swings_settled() : 0;
   s["elements"] = model_.num_elements();
@@ -1119,15 +978,15 @@ nlohmann::json Simulation::summary(const RunResult& result, double wall_seconds,
   s["defaults"] = defaults;
   s["timers"] = timers_summary(wall_seconds, setup);
   if (setup) s["mesh_cache"] = mesh_cache_outcome_name(setup->mesh_cache);
-  const SolverStats& st = solver_.stats();
+  const SolverStats& st = system_->solver_stats();
   s["solver"] = {{"analyses", st.analyses},
                  {"analysis_seconds", st.analysis_seconds},
                  {"factorizations", st.factorizations},
                  {"updates", st.updates},
                  {"updated_columns", st.updated_columns},
-                 {"nonzeros", layout_.pattern.nnz()},
+                 {"nonzeros", system_->layout().pattern.nnz()},
                  {"ordering", std::string(fill_ordering_name(st.ordering))},
-                 {"ordering_cache", mesh_cache_outcome_name(ordering_cache_)},
+                 {"ordering_cache", mesh_cache_outcome_name(system_->ordering_cache())},
                  {"factor_nonzeros", st.factor_nonzeros},
                  {"factor_flops", st.last_factor_flops}};
   return s;

@@ -1,8 +1,6 @@
 #pragma once
 // The step loop of the paper's flowchart (Fig. 3), and nothing else: each stage lives in
 // its own file and this one calls them in order.
-#include <oneapi/tbb/task_group.h>
-
 #include <cstdint>
 #include <filesystem>
 #include <functional>
@@ -15,7 +13,6 @@
 #include <nlohmann/json.hpp>
 
 #include "engine/assembly/element_coloring.hpp"
-#include "engine/assembly/stiffness_layout.hpp"
 #include "engine/common/timers.hpp"
 #include "engine/damage/fragment_restraint.hpp"
 #include "engine/loading/boundary_conditions.hpp"
@@ -26,7 +23,6 @@
 #include "engine/report/run_stats.hpp"
 #include "engine/report/setup_report.hpp"
 #include "engine/scene/scene.hpp"
-#include "engine/solver/cholmod_solver.hpp"
 #include "engine/state/step_state.hpp"
 #include "engine/time/integrator.hpp"
 #include "engine/time/step_control.hpp"
@@ -36,6 +32,8 @@ namespace rockdd {
 class Probes;
 class ContactStage;
 class DamageStage;
+class LinearSystem;
+struct SolverStats;
 struct DamageChange;
 
 /// What an observer sees after each committed step.
@@ -93,24 +91,18 @@ class Simulation {
   const Model& model() const { return model_; }
   const Scene& scene() const { return scene_; }
   /// The solver's counters; complete once run() has returned.
-  const SolverStats& solver_stats() const { return solver_.stats(); }
+  const SolverStats& solver_stats() const;
   const StageTimers& timers() const { return timers_; }
 
  private:
   /// One step attempt of length dt from the committed state (`retries` earlier attempts of
   /// this step failed); false when it must be redone.
   bool attempt_step(long step, int retries, double dt, double load_factor, StepControl& control);
-  /// Reassembles K + cM (into base_values_ with contacts, values_ without) when the mass
-  /// coefficient, the moduli or the pattern changed; without contacts also refactorizes.
+  /// K + cM and the fragment restraint assembled when the mass coefficient, the moduli, the
+  /// frames or the pattern changed; without contacts also factorized.
   void prepare_system(double mass_coefficient);
-  /// Pattern of elements plus current contact triples; CHOLMOD analysis of it, started beside
-  /// the scatter map (await_analysis() waits for it).
+  /// The system's pattern for the elements and the current contact triples.
   void rebuild_layout();
-  /// Waits for the analysis rebuild_layout() started, if any: before the solver is used.
-  void await_analysis();
-  /// CHOLMOD's analysis of layout_.pattern; the first one through the ordering cache beside
-  /// the mesh (mesh_slot_) when there is one.
-  void analyze_layout();
   /// Solves one open-close iteration: springs, factorization (unless `factor_current`: the
   /// factor was updated for the springs that switched), solve; fills du_.
   void solve_iteration(long step, const InertiaTerms& inertia, bool factor_current = false);
@@ -121,18 +113,11 @@ class Simulation {
                             StepControl& control, bool factor_current = false);
   /// Damage laws at the step's result u + du; moduli marked stale when damage grew.
   DamageChange evaluate_damage();
-  /// After a damage pass that changed moduli: folds K(new) - K(old) into the factor by
-  /// low-rank updates, and into the assembled values, when the cost model expects that to be
-  /// cheaper than reassembling and refactorizing (false: nothing done, the caller does that).
-  bool fold_modulus_change(double mass_coefficient);
   /// Without inertia, after a damage pass in which elements broke (w reached 1): a part that
   /// only they joined to what holds it is loose until the step ends and detaches them, so the
   /// fragment restraint is rebuilt over the parts (state_.u_trial's increment sets its force).
   /// True when the springs changed (K must be reassembled).
   bool hold_parts_cut_loose();
-  /// x = K^{-1} rhs in state_.rhs; while the factor carries updates, the solution is checked
-  /// against the assembled values and the matrix refactorized if the check fails.
-  void solve_system();
   /// After a committed step: damaged elements become blocks, and what hangs on the nodes
   /// is rebuilt for the new topology.
   void detach_fractured_elements();
@@ -192,24 +177,13 @@ class Simulation {
   BoundaryConditions bc_;
   std::vector<double> reference_loads_;
   ElementColoring coloring_;
-  StiffnessLayout layout_;
-  CholmodSolver solver_;
-  std::optional<MeshCacheSlot> mesh_slot_;  // until the first analysis has used it
-  MeshCacheOutcome ordering_cache_ = MeshCacheOutcome::off;
-  std::vector<double> values_;
-  double factorized_mass_coefficient_ = -1.0;
   bool corotational_ = false;  // strain in co-rotated element frames (not in static analysis)
   std::unique_ptr<Probes> probes_;
-  std::unique_ptr<ContactStage> contact_;         // only for scenes with [[joint]]
-  std::unique_ptr<DamageStage> damage_;           // only for scenes with damageable materials
-  std::vector<double> base_values_;               // K + cM without contact springs
-  LowRankTerms springs_added_, springs_removed_;  // contact springs switched in an iteration
-  LowRankTerms moduli_added_, moduli_removed_;    // element stiffness changed by a damage pass
-  bool values_incremental_ = false;  // the assembled values carry folded modulus changes
-  std::vector<double> check_rhs_, check_residual_;  // the updated-factor check's work arrays
-  std::vector<std::uint8_t> detached_;              // per element
-  std::vector<double> committed_damage_;  // w at the last committed step: a redone attempt
-                                          // starts from it, not from its failed attempt's
+  std::unique_ptr<ContactStage> contact_;  // only for scenes with [[joint]]
+  std::unique_ptr<DamageStage> damage_;    // only for scenes with damageable materials
+  std::vector<std::uint8_t> detached_;     // per element
+  std::vector<double> committed_damage_;   // w at the last committed step: a redone attempt
+                                           // starts from it, not from its failed attempt's
   /// Where damage first appeared: the elements of the first damage pass that found any.
   struct FirstDamage {
     long step = 0;
@@ -252,11 +226,8 @@ class Simulation {
   RunStats stats_;   // what the run did, for summary.json
   StageTimers timers_;
   SetupTimers setup_timers_;
-  bool analysis_pending_ = false;  // analysis_task_ holds a task no one waited for
-  // Runs the solver's analysis beside the scatter map. Declared last, so destroyed first: a
-  // constructor that throws after starting it waits for the task (oneTBB's destructor does)
-  // while the members it reads and writes (layout_, solver_, mesh_slot_) still stand.
-  tbb::task_group analysis_task_;
+  // Declared after the timers it adds to; its destructor waits for a running analysis.
+  std::unique_ptr<LinearSystem> system_;
 };
 
 }  // namespace rockdd

@@ -5,9 +5,9 @@
 #include <span>
 #include <vector>
 
+#include "engine/assembly/low_rank_terms.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
 #include "engine/model/model.hpp"
-#include "engine/solver/cholmod_solver.hpp"
 
 namespace rockdd {
 

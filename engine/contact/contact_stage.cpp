@@ -193,9 +193,10 @@ std::vector<ContactSprings> ContactStage::springs() const {
   return out;
 }
 
-void ContactStage::spring_changes(std::span<const ContactSprings> before,
-                                  std::span<const std::int32_t> equation, LowRankTerms& added,
-                                  LowRankTerms& removed) const {
+const ContactStage::SpringChanges& ContactStage::spring_changes(
+    std::span<const ContactSprings> before, std::span<const std::int32_t> equation) {
+  LowRankTerms& added = spring_changes_.added;
+  LowRankTerms& removed = spring_changes_.removed;
   added.clear();
   removed.clear();
   auto column = [&](const Contact& c, const double v[6], double k, LowRankTerms& out) {
@@ -219,6 +220,7 @@ void ContactStage::spring_changes(std::span<const ContactSprings> before,
     if (shear_change != 0.0)
       column(c, c.t, std::abs(shear_change), shear_change > 0.0 ? added : removed);
   }
+  return spring_changes_;
 }
 
 void ContactStage::set_analysis(Analysis analysis) {
@@ -369,39 +371,37 @@ std::vector<std::int32_t> ContactStage::triples() const {
   return out;
 }
 
-void ContactStage::add_springs(std::span<const double> positions, const StiffnessLayout& layout,
-                               std::int32_t first_slot, std::span<double> values,
-                               std::span<double> force) const {
+void ContactStage::add_spring_forces(std::span<const double> positions,
+                                     std::span<double> force) const {
   const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
+  for (const Contact& c : contacts_) {
+    if (c.state == ContactState::open) continue;
+    add_to_nodes(c, c.g, kn * linear_gap(c, positions), force);
+    if (c.state == ContactState::locked)
+      add_to_nodes(c, c.t, ks * (c.shear_spring + step_slip(c, positions)), force);
+    else  // sliding: Coulomb friction opposes the slip, as a load from the last normal force,
+          // and without inertia a spring k_slide on the slip since (see ContactParameters)
+      add_to_nodes(c, c.t,
+                   -c.friction_force + c.slide_stiffness * (step_slip(c, positions) - c.slide_slip),
+                   force);
+  }
+}
+
+const SlotMatrices& ContactStage::spring_matrices(std::int32_t first_slot) {
+  SlotMatrices& matrices = spring_matrices_;
+  matrices.clear();
+  const double kn = parameters_.normal_stiffness;
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
     if (c.state == ContactState::open) continue;
-    const double gap = linear_gap(c, positions);
-    double k[36];
+    // kn g g^T, plus ks t t^T locked or the sliding spring k_slide t t^T sliding.
+    const double k_shear =
+        c.state == ContactState::locked ? parameters_.shear_stiffness : c.slide_stiffness;
+    double* ku = matrices.add(first_slot + static_cast<std::int32_t>(i));
     for (int r = 0; r < 6; ++r)
-      for (int s = 0; s < 6; ++s) k[6 * r + s] = kn * c.g[r] * c.g[s];
-    add_to_nodes(c, c.g, kn * gap, force);
-    if (c.state == ContactState::locked) {
-      for (int r = 0; r < 6; ++r)
-        for (int s = 0; s < 6; ++s) k[6 * r + s] += ks * c.t[r] * c.t[s];
-      add_to_nodes(c, c.t, ks * (c.shear_spring + step_slip(c, positions)), force);
-    } else {
-      // Sliding: Coulomb friction opposes the slip, as a load from the last normal force,
-      // and without inertia a spring k_slide on the slip since (see ContactParameters).
-      const double k_slide = c.slide_stiffness;
-      for (int r = 0; r < 6; ++r)
-        for (int s = 0; s < 6; ++s) k[6 * r + s] += k_slide * c.t[r] * c.t[s];
-      add_to_nodes(c, c.t, -c.friction_force + k_slide * (step_slip(c, positions) - c.slide_slip),
-                   force);
-    }
-    if (values.empty()) continue;
-    const std::int32_t* to =
-        &layout.scatter[static_cast<std::size_t>(first_slot + static_cast<std::int32_t>(i)) *
-                        kElementUpperEntries];
-    for (int r = 0; r < 6; ++r)
-      for (int s = r; s < 6; ++s, ++to)
-        if (*to >= 0) values[*to] += k[6 * r + s];
+      for (int s = r; s < 6; ++s, ++ku) *ku = kn * c.g[r] * c.g[s] + k_shear * c.t[r] * c.t[s];
   }
+  return matrices;
 }
 
 int ContactStage::update_states(std::span<const double> positions, double tolerance_scale,

@@ -10,11 +10,11 @@
 #include <span>
 #include <vector>
 
-#include "engine/assembly/stiffness_layout.hpp"
+#include "engine/assembly/low_rank_terms.hpp"
+#include "engine/assembly/slot_matrices.hpp"
 #include "engine/contact/contact_detection.hpp"
 #include "engine/model/model.hpp"
 #include "engine/scene/scene.hpp"
-#include "engine/solver/cholmod_solver.hpp"
 
 namespace rockdd {
 
@@ -92,11 +92,11 @@ class ContactStage {
   /// Node triples (vertex, a, b) of the contacts, appended to the element connectivity
   /// when the stiffness layout is built.
   std::vector<std::int32_t> triples() const;
-  /// Adds the springs of closed contacts to K (layout entries of contact c are those of
-  /// element `first_slot + c`) and their forces at `positions` to `force` (2 per node).
-  void add_springs(std::span<const double> positions, const StiffnessLayout& layout,
-                   std::int32_t first_slot, std::span<double> values,
-                   std::span<double> force) const;
+  /// Adds the forces of the closed contacts' springs at `positions` to `force` (2 per node).
+  void add_spring_forces(std::span<const double> positions, std::span<double> force) const;
+  /// The springs of the closed contacts as matrices for K: contact c at slot `first_slot + c`
+  /// of the layout (its triple follows the elements').
+  const SlotMatrices& spring_matrices(std::int32_t first_slot);
   /// Updates the states from the solved `positions`; returns how many changed (at least 1
   /// while a contact is deeper than penetration_limit: a runaway never settles), and the
   /// largest penetration. Gaps and slips are the step's linearised ones, the same the solve
@@ -112,7 +112,7 @@ class ContactStage {
   /// accumulates, other contacts forget theirs.
   void commit(std::span<const double> positions);
   /// Adds to `force` (2 per node) the forces of the closed contacts at `positions` after
-  /// commit(): a locked contact's shear is its committed elastic slip, which add_springs
+  /// commit(): a locked contact's shear is its committed elastic slip, which add_spring_forces
   /// would count twice with the step's slip.
   void add_committed_forces(std::span<const double> positions, std::span<double> force) const;
 
@@ -125,9 +125,12 @@ class ContactStage {
   /// columns sqrt(k) g over the equations `equation` (per dof, -1 when prescribed): a normal
   /// spring kn g g^T unless open, a shear spring k t t^T (ks locked, the contact's
   /// sliding stiffness sliding).
-  void spring_changes(std::span<const ContactSprings> before,
-                      std::span<const std::int32_t> equation, LowRankTerms& added,
-                      LowRankTerms& removed) const;
+  /// The columns of the springs added, and of those removed.
+  struct SpringChanges {
+    LowRankTerms added, removed;
+  };
+  const SpringChanges& spring_changes(std::span<const ContactSprings> before,
+                                      std::span<const std::int32_t> equation);
 
   /// After fracture rebuilt the blocks: takes over the committed contacts of the stage
   /// before, where their vertex and edge still exist (node ids survive a split).
@@ -192,6 +195,8 @@ class ContactStage {
   double force_scale_ = 0.0;
   double friction_dissipation_ = 0.0, spring_energy_ = 0.0;
 
+  SlotMatrices spring_matrices_;  // scratch of spring_matrices()
+  SpringChanges spring_changes_;  // scratch of spring_changes()
   bool started_ = false;  // a step has been committed: contacts that form now are not bonded
 };
 

@@ -191,15 +191,6 @@ FragmentRestraint::FragmentRestraint(const Model& model, const BoundaryCondition
     }
 }
 
-void FragmentRestraint::add_stiffness(std::span<const std::int32_t> equation,
-                                      std::span<const std::int32_t> diagonal,
-                                      std::span<double> values) const {
-  for (std::size_t i = 0; i < dofs_.size(); ++i) {
-    const std::int32_t eq = equation[dofs_[i]];
-    if (eq >= 0) values[diagonal[eq]] += stiffness_[i];
-  }
-}
-
 void FragmentRestraint::forces(std::span<const double> du, std::span<double> force) const {
   std::fill(force.begin(), force.end(), 0.0);
   for (std::size_t i = 0; i < dofs_.size(); ++i)

@@ -34,9 +34,9 @@ class FragmentRestraint {
   FragmentRestraint(const Model& model, const BoundaryConditions& bc, double fraction,
                     double support = 1.0);
 
-  /// Adds the springs to the diagonal of K: `diagonal[eq]` is the value slot of equation eq.
-  void add_stiffness(std::span<const std::int32_t> equation, std::span<const std::int32_t> diagonal,
-                     std::span<double> values) const;
+  /// The restrained dofs and the spring (N/m) on each: what K's diagonal gains.
+  std::span<const std::int32_t> dofs() const { return dofs_; }
+  std::span<const double> stiffness() const { return stiffness_; }
   /// force[d] = k du[d] on the restrained dofs, 0 elsewhere (2 per node).
   void forces(std::span<const double> du, std::span<double> force) const;
   /// Elastic energy of the springs at increment du (J): sum of k du^2 / 2.

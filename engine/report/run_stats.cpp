@@ -12,8 +12,6 @@ void RunStats::write(nlohmann::json& s) const {
   s["damage_iterations"] = damage_iterations;
   s["damage_iteration_limit_hits"] = damage_limit_hits;
   s["detached_elements"] = detached_elements;
-  s["folded_damage_passes"] = folded_damage_passes;
-  s["untrusted_updated_solves"] = untrusted_updated_solves;
   s["parts_cut_loose"] = parts_cut_loose;
 }
 

@@ -16,8 +16,6 @@ struct RunStats {
   long damage_iterations = 0;         // re-solves after a damage event
   long damage_limit_hits = 0;         // steps that ran out of damage passes
   long detached_elements = 0;         // elements that became blocks of their own
-  long folded_damage_passes = 0;      // damage passes folded into the factor by updates
-  long untrusted_updated_solves = 0;  // solves with an updated factor that failed the check
   long parts_cut_loose = 0;           // damage passes after which the fragment restraint grew
 
   /// Writes the counters under their summary.json keys (docs/scene-extensions.md).

@@ -295,20 +295,6 @@ CholmodSolver::CholmodSolver(FillOrdering ordering)
 }
 CholmodSolver::~CholmodSolver() = default;
 
-void LowRankTerms::add_column(std::span<const std::int32_t> rows, std::span<const double> values) {
-  if (rows.size() != values.size())
-    throw std::invalid_argument("LowRankTerms::add_column: rows and values differ in size");
-  row.insert(row.end(), rows.begin(), rows.end());
-  value.insert(value.end(), values.begin(), values.end());
-  col_ptr.push_back(static_cast<std::int32_t>(row.size()));
-}
-
-void LowRankTerms::clear() {
-  col_ptr.assign(1, 0);
-  row.clear();
-  value.clear();
-}
-
 bool CholmodSolver::analyzed() const {
   return state_->symbolic != nullptr;
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "engine/assembly/low_rank_terms.hpp"
 #include "engine/assembly/sparsity_pattern.hpp"
 #include "engine/solver/fill_reducing_ordering.hpp"
 
@@ -29,21 +30,6 @@ struct SolverStats {
   double analysis_seconds = 0.0;       // every analyze(), on whichever thread ran it
   FillOrdering ordering = FillOrdering::cholmod;  // the ordering the last analysis kept
   double last_update_seconds = 0.0;               // the last update(), its conversion included
-};
-
-/// The columns c_1..c_k of a low-rank term C, each a sparse vector in the solver's equation
-/// numbering (the rows of the pattern), stored by columns. A contact spring k g g^T over the
-/// contact's 6 dofs is one column sqrt(k) g. Rows below zero (prescribed dofs, whose equation
-/// is -1) are skipped; repeated rows in a column add up.
-struct LowRankTerms {
-  std::vector<std::int32_t> col_ptr{0};  // k + 1
-  std::vector<std::int32_t> row;         // equation of each entry
-  std::vector<double> value;
-
-  /// Appends the column sum_i values[i] e_{rows[i]}.
-  void add_column(std::span<const std::int32_t> rows, std::span<const double> values);
-  void clear();
-  std::int32_t num_columns() const { return static_cast<std::int32_t>(col_ptr.size()) - 1; }
 };
 
 /// Owns the CHOLMOD state (common, symbolic factor, numeric factor) of one SPD system.

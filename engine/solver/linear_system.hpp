@@ -1,0 +1,125 @@
+#pragma once
+// The global system of a step, K_eff du = r, and everything that changes it: the stiffness
+// pattern (analysed again only when contacts or blocks change it), the assembled values, the
+// factor and its low-rank updates. The one place where the global matrix or its factor
+// changes: the stages hand it element matrices, springs and damage changes.
+#include <oneapi/tbb/task_group.h>
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "engine/assembly/element_coloring.hpp"
+#include "engine/assembly/low_rank_terms.hpp"
+#include "engine/assembly/slot_matrices.hpp"
+#include "engine/assembly/stiffness_layout.hpp"
+#include "engine/common/timers.hpp"
+#include "engine/mesh/mesh_cache.hpp"
+#include "engine/model/model.hpp"
+#include "engine/solver/cholmod_solver.hpp"
+
+namespace rockdd {
+
+/// Counters of the system's updated factors, for summary.json.
+struct LinearSystemStats {
+  long folded_damage_passes = 0;      // damage passes folded into the factor by updates
+  long untrusted_updated_solves = 0;  // solves with an updated factor that failed the check
+};
+
+/// The restraint springs that join K's diagonal: dof and stiffness (N/m) of each.
+struct DiagonalSprings {
+  std::span<const std::int32_t> dofs;
+  std::span<const double> stiffness;
+};
+
+/// Pattern, values and factor of K_eff = K + c M (+ restraint springs, + contact springs).
+class LinearSystem {
+ public:
+  /// `timers`: the run's stage timers, which the layout, analysis, assembly, factorizations
+  /// and solves add to. With `mesh_slot` (where the model's mesh lies in the mesh cache), the
+  /// first analysis takes its fill-reducing ordering from beside the mesh when one was stored
+  /// for exactly this pattern, and stores it there otherwise: bitwise the same factor.
+  /// `factor_updates` (solver.factor_updates): low-rank updates allowed when cheaper.
+  LinearSystem(StageTimers& timers, std::optional<MeshCacheSlot> mesh_slot, bool factor_updates);
+  /// Waits for a running analysis (it reads this object).
+  ~LinearSystem();
+  LinearSystem(const LinearSystem&) = delete;
+  LinearSystem& operator=(const LinearSystem&) = delete;
+
+  /// A new pattern for the elements and contact triples `conn` (3 nodes each) over the
+  /// equations `equation` (per dof, -1 when prescribed). CHOLMOD's analysis runs beside the
+  /// scatter map; the solver waits for it before it factorizes. With `contact_springs`, the
+  /// springs of each open-close iteration join the assembled values at every factorization.
+  void rebuild(std::span<const std::int32_t> conn, std::int32_t num_nodes,
+               std::span<const std::int32_t> equation, std::int32_t num_equations,
+               bool contact_springs);
+  /// Waits for the analysis rebuild() started, and rethrows what it threw.
+  void await_analysis();
+
+  /// The moduli, the element frames or the restraint changed: the next prepare() assembles.
+  void invalidate() { assembled_for_.reset(); }
+  /// A step starts from freshly assembled values: folded damage changes do not carry their
+  /// round-off from step to step.
+  void drop_folded_changes() {
+    if (values_folded_) invalidate();
+  }
+  /// Assembles K + c M (c = `mass_coefficient`) and the restraint's springs, unless the values
+  /// already hold them; without contact springs also factorizes.
+  void prepare(const Model& model, const ElementColoring& coloring,
+               std::span<const std::int32_t> equation, double mass_coefficient,
+               DiagonalSprings restraint);
+  /// K_eff plus the contact springs `springs`; factorized unless `factor_current` (the factor
+  /// already holds exactly this system: updated for the springs that switched, or folded).
+  void add_contact_springs(const SlotMatrices& springs, bool factor_current);
+  /// The springs that switched in an open-close iteration, folded into the factor when an
+  /// update is expected to cost less than a factorization. True when the factor now holds
+  /// the next iteration's system; false leaves the factorization to add_contact_springs.
+  bool update_contact_springs(const LowRankTerms& added, const LowRankTerms& removed);
+  /// After a damage pass that changed the moduli of `changed` (damage_before[e] to
+  /// model.damage[e]): K(after) - K(before) folded into the factor and the values by updates
+  /// when cheaper. True when done (the system is current at `mass_coefficient`); false when
+  /// nothing was done and the caller must invalidate().
+  bool fold_modulus_change(const Model& model, std::span<const std::int32_t> equation,
+                           std::span<const std::int32_t> changed,
+                           std::span<const double> damage_before, double mass_coefficient);
+  /// x = K_eff^{-1} x. While the factor carries updates, the answer is checked against the
+  /// assembled values by its backward error and the matrix refactorized if the check fails.
+  void solve(std::span<double> x);
+
+  const StiffnessLayout& layout() const { return layout_; }
+  std::int32_t num_equations() const { return num_equations_; }
+  const SolverStats& solver_stats() const { return solver_.stats(); }
+  const LinearSystemStats& stats() const { return stats_; }
+  /// Whether the first analysis took its ordering from the mesh cache.
+  MeshCacheOutcome ordering_cache() const { return ordering_cache_; }
+
+ private:
+  /// CHOLMOD's analysis of layout_.pattern; the first one through the ordering cache.
+  void analyze();
+  /// The values the assembly, restraint and damage changes write: without contact springs
+  /// the factorized values themselves, with them the base the springs join.
+  std::span<double> base() { return contact_springs_ ? base_values_ : values_; }
+  void factorize();
+
+  StageTimers& timers_;
+  bool factor_updates_;
+  StiffnessLayout layout_;
+  std::int32_t num_equations_ = 0;
+  CholmodSolver solver_;
+  std::optional<MeshCacheSlot> mesh_slot_;  // until the first analysis has used it
+  MeshCacheOutcome ordering_cache_ = MeshCacheOutcome::off;
+  bool contact_springs_ = false;
+  std::vector<double> values_;           // K_eff as factorized, pattern order
+  std::vector<double> base_values_;      // K + c M + restraint, without contact springs
+  std::optional<double> assembled_for_;  // the mass coefficient the values hold; none: stale
+  bool values_folded_ = false;           // the values carry folded modulus changes
+  LowRankTerms moduli_added_, moduli_removed_;
+  std::vector<double> check_rhs_, check_residual_;  // the updated-factor check's work arrays
+  LinearSystemStats stats_;
+  bool analysis_pending_ = false;  // analysis_task_ holds a task no one waited for
+  // Declared last, so destroyed first: a task still running reads the members above.
+  tbb::task_group analysis_task_;
+};
+
+}  // namespace rockdd
