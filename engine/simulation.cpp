@@ -198,6 +198,10 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
   state_.load_factor = load_factor;
   const std::size_t num_dofs = model_.X.size();
   inertia_called_for_ = false;
+  if (retries > 0) {  // the rejected trial's strain and stress are not the committed state's
+    model_.strain = committed_strain_;
+    model_.stress = committed_stress_;
+  }
   if (damage_) {
     attempt_first_damage_.reset();
     energy_.begin_attempt();
@@ -222,6 +226,7 @@ bool Simulation::attempt_step(long step, int retries, double dt, double load_fac
                              state_.committed_stress, state_.damage_force, corotational_);
     }
   }
+  if (on_attempt_) on_attempt_(AttemptReport{step, retries, dt}, model_);
   if (contact_) {
     bool changed = false;
     {
@@ -755,6 +760,7 @@ RunResult Simulation::run(const RunOptions& options) {
                                   static_cast<std::size_t>(threads));
 
   const double end_time = end_time_of(scene_);
+  on_attempt_ = options.on_attempt;
   StepControl control(scene_.time);
   std::unique_ptr<RunOutputs> outputs;
   if (options.write_outputs)
@@ -768,6 +774,8 @@ RunResult Simulation::run(const RunOptions& options) {
   compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, state_.f_int,
                          corotational_);
   balance_acceleration();  // no contact force yet: f_contact is zero
+  committed_strain_ = model_.strain;
+  committed_stress_ = model_.stress;
   std::vector<double> row;
   // The end on softening (time.stop_at_softening) watches one history column.
   const bool watch_softening = scene_.time.stop_at_softening.has_value();
@@ -826,6 +834,8 @@ RunResult Simulation::run(const RunOptions& options) {
       } catch (const RunFailure& failure) {
         fracture_failure = failure;
       }
+      committed_strain_ = model_.strain;
+      committed_stress_ = model_.stress;
       t += dt;
       stats_.steps = step;
       control.accept(true);

@@ -43,6 +43,13 @@ struct StepReport {
   long num_steps = 0;  // planned steps; 0 when time-driven
 };
 
+/// What an observer sees as a step attempt starts, from the committed state.
+struct AttemptReport {
+  long step = 0;
+  int retries = 0;  // earlier attempts of this step that were rejected
+  double dt = 0;
+};
+
 /// How to run: where outputs go, threads, a per-step callback and a caller's stop.
 struct RunOptions {
   std::filesystem::path out_root;  // empty: the scene's output.dir
@@ -51,6 +58,9 @@ struct RunOptions {
   bool write_outputs = true;
   bool write_frames = true;  // VTU frames (history, profiles and summary come regardless)
   std::function<void(const StepReport&, const Model&)> on_step;
+  /// Called as each step attempt starts, with the model the attempt starts from: the committed
+  /// state, also after a rejected attempt (for diagnosis of redone steps).
+  std::function<void(const AttemptReport&, const Model&)> on_attempt;
   /// Asked after each committed step, before its history row: false ends the run there, ok,
   /// with that step's frame written (a caller's own end condition; summary.json then says
   /// "stopped_by_caller": true).
@@ -178,12 +188,14 @@ class Simulation {
   std::vector<double> reference_loads_;
   ElementColoring coloring_;
   bool corotational_ = false;  // strain in co-rotated element frames (not in static analysis)
+  std::function<void(const AttemptReport&, const Model&)> on_attempt_;  // RunOptions'
   std::unique_ptr<Probes> probes_;
   std::unique_ptr<ContactStage> contact_;  // only for scenes with [[joint]]
   std::unique_ptr<DamageStage> damage_;    // only for scenes with damageable materials
   std::vector<std::uint8_t> detached_;     // per element
-  std::vector<double> committed_damage_;   // w at the last committed step: a redone attempt
-                                           // starts from it, not from its failed attempt's
+  std::vector<double> committed_strain_, committed_stress_;
+  std::vector<double> committed_damage_;  // w at the last committed step: a redone attempt
+                                          // starts from it, not from its failed attempt's
   /// Where damage first appeared: the elements of the first damage pass that found any.
   struct FirstDamage {
     long step = 0;
