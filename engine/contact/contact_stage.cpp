@@ -12,11 +12,6 @@
 namespace rockdd {
 namespace {
 
-/// Spring of a sliding contact, as a fraction of ks, in analyses without inertia: about the
-/// shear stiffness of a damaged element (a tenth of E0 t, against ks = 8 E0 t), so that the
-/// open-close iteration moves a sliding contact most of the way to its friction limit per
-/// iteration without throwing a fragment whose other contacts are open.
-constexpr double kSlidingStiffnessFraction = 0.03;
 /// The softest a sliding contact's spring gets, as a fraction of its first stiffness.
 constexpr double kMinSlidingStiffness = 1.0 / 64.0;
 
@@ -67,119 +62,9 @@ double step_slip(const Contact& c, std::span<const double> positions) {
 
 }  // namespace
 
-ContactStage::ContactStage(const Scene& scene, const Model& model, Analysis analysis) {
-  boundary_ = extract_block_boundary(model);
-  const auto num_bodies = static_cast<std::int32_t>(model.sets.bodies.size());
-  rules_.num_bodies = num_bodies;
-  rules_.allowed.assign(static_cast<std::size_t>(num_bodies) * static_cast<std::size_t>(num_bodies),
-                        0);
-  joint_friction_.assign(rules_.allowed.size(), 0.0);
-  joint_cohesion_.assign(rules_.allowed.size(), 0.0);
-  joint_tensile_.assign(rules_.allowed.size(), 0.0);
-  auto body_index = [&](const std::string& name) {
-    const auto& bodies = model.sets.bodies;
-    return static_cast<std::int32_t>(std::find(bodies.begin(), bodies.end(), name) -
-                                     bodies.begin());
-  };
-  std::optional<double> given_kn, given_ks;
-  for (const JointSpec& joint : scene.joints) {
-    // The springs are one pair for every contact: the last joint that gives one sets it, the
-    // crack joint included.
-    if (joint.normal_stiffness) given_kn = joint.normal_stiffness;
-    if (joint.shear_stiffness) given_ks = joint.shear_stiffness;
-    if (joint.between.size() == 1 && joint.between[0] == "crack") continue;  // fracture faces
-    std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
-    if (joint.between.size() == 1 && joint.between[0] == "*") {
-      for (std::int32_t i = 0; i < num_bodies; ++i)
-        for (std::int32_t j = 0; j < num_bodies; ++j) pairs.emplace_back(i, j);
-    } else if (joint.between.size() == 2) {
-      pairs.emplace_back(body_index(joint.between[0]), body_index(joint.between[1]));
-      pairs.emplace_back(pairs.back().second, pairs.back().first);
-    }
-    for (const auto& [i, j] : pairs) {
-      if (i >= num_bodies || j >= num_bodies) continue;
-      const std::size_t k = static_cast<std::size_t>(i) * static_cast<std::size_t>(num_bodies) +
-                            static_cast<std::size_t>(j);
-      rules_.allowed[k] = 1;
-      joint_friction_[k] = std::tan(joint.friction_angle * std::numbers::pi / 180.0);
-      joint_cohesion_[k] = joint.cohesion;
-      joint_tensile_[k] = joint.tensile_strength;
-    }
-  }
-  // Fracture faces (METHOD.md "Fracture"): blocks of one body that fracture separated touch
-  // with the "crack" joint's properties, or else the material's friction angle and no
-  // cohesion or tension.
-  if (!model.tensile_strength.empty()) {
-    const JointSpec* crack = nullptr;
-    for (const JointSpec& joint : scene.joints)
-      if (joint.between.size() == 1 && joint.between[0] == "crack") crack = &joint;
-    std::vector<double> body_friction(static_cast<std::size_t>(num_bodies), 0.0);
-    for (std::int32_t e = 0; e < model.num_elements(); ++e)
-      body_friction[model.element_body[e]] =
-          scene.materials[model.element_material[e]].friction_angle.value_or(0.0);
-    for (std::int32_t b = 0; b < num_bodies; ++b) {
-      const std::size_t k = static_cast<std::size_t>(b) * static_cast<std::size_t>(num_bodies) +
-                            static_cast<std::size_t>(b);
-      rules_.allowed[k] = 1;
-      const double phi = crack ? crack->friction_angle : body_friction[b];
-      joint_friction_[k] = std::tan(phi * std::numbers::pi / 180.0);
-      joint_cohesion_[k] = crack ? crack->cohesion : 0.0;
-      joint_tensile_[k] = crack ? crack->tensile_strength : 0.0;
-    }
-  }
-  rules_.block_body.assign(static_cast<std::size_t>(model.num_blocks), 0);
-  for (std::int32_t e = 0; e < model.num_elements(); ++e)
-    rules_.block_body[model.element_block[e]] = model.element_body[e];
-  // A block of fully broken elements (w = 1, the stiffness floor) is the open crack itself,
-  // not a grain of rock: it takes no part in contact. As a contact body it could be crushed
-  // to a point, and the copies of a node where several such fragments meet were pinched
-  // between their neighbours' faces 10-25 um deep, in equilibrium with each other: hundreds
-  // of joules in springs inside collapse steps, and a crack path that a 1e-9 change of the
-  // load moved (docs/method-choices.md, "Fracture").
-  if (!model.damage.empty()) {
-    rules_.inert.assign(static_cast<std::size_t>(model.num_blocks), 1);
-    for (std::int32_t e = 0; e < model.num_elements(); ++e)
-      if (model.damage[e] < 1.0) rules_.inert[model.element_block[e]] = 0;
-  }
-
-  // Penalty springs scale with the stiffest material in contact (METHOD.md: about 10-100 E t).
-  double stiffest = 0.0;
-  for (const double e : model.young) stiffest = std::max(stiffest, e);
-  parameters_.thickness = model.thickness;
-  parameters_.normal_stiffness =
-      given_kn ? *given_kn * model.thickness : 20.0 * stiffest * model.thickness;
-  parameters_.shear_stiffness =
-      given_ks ? *given_ks * model.thickness : 0.4 * parameters_.normal_stiffness;
-  // Without inertia nothing but its own contacts holds a block tangentially, and friction as a
-  // bare load would throw one that is held on one side only: a sliding contact keeps a
-  // spring of a small fraction of ks (ContactParameters::sliding_stiffness).
-  set_analysis(analysis);
-  // Candidates within half the median boundary edge: near enough to close within a step.
-  std::vector<double> lengths;
-  for (std::size_t i = 0; i + 1 < boundary_.edge_nodes.size(); i += 2) {
-    const std::int32_t a = boundary_.edge_nodes[i], b = boundary_.edge_nodes[i + 1];
-    lengths.push_back(
-        std::hypot(model.X[2 * b] - model.X[2 * a], model.X[2 * b + 1] - model.X[2 * a + 1]));
-  }
-  // Each boundary vertex stands for half of its two boundary edges. Both faces of a joint
-  // have their vertices in contact with the other, so a contact carries half of that: the
-  // cohesion and tensile strength of a joint then act on its true length.
-  vertex_area_.assign(boundary_.vertices.size(), 0.0);
-  for (std::size_t i = 0; i < lengths.size(); ++i)
-    for (int end = 0; end < 2; ++end) {
-      const auto v = std::lower_bound(boundary_.vertices.begin(), boundary_.vertices.end(),
-                                      boundary_.edge_nodes[2 * i + end]) -
-                     boundary_.vertices.begin();
-      vertex_area_[v] += 0.25 * lengths[i] * model.thickness;
-    }
-  if (!lengths.empty()) {
-    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
-    parameters_.reach = 0.5 * lengths[lengths.size() / 2];
-    // A quarter of the median edge: far beyond any penalty overlap of a sound solve
-    // (force / kn), so deeper only when the iteration runs away.
-    parameters_.penetration_limit = 0.5 * parameters_.reach;
-  }
-}
+ContactStage::ContactStage(const Scene& scene, const Model& model, Analysis analysis)
+    : boundary_(extract_block_boundary(model)),
+      rules_(contact_rules(scene, model, boundary_, analysis)) {}
 
 void ContactStage::mark_touching_nodes(std::span<std::uint8_t> node_mask) const {
   for (const Contact& c : contacts_)
@@ -215,7 +100,7 @@ const ContactStage::SpringChanges& ContactStage::spring_changes(
     const Contact& c = contacts_[i];
     const bool normal_is = c.state != ContactState::open;
     if (before[i].normal != normal_is)
-      column(c, c.g, parameters_.normal_stiffness, normal_is ? added : removed);
+      column(c, c.g, rules_.parameters.normal_stiffness, normal_is ? added : removed);
     const double shear_change = shear_stiffness(c) - before[i].shear_stiffness;
     if (shear_change != 0.0)
       column(c, c.t, std::abs(shear_change), shear_change > 0.0 ? added : removed);
@@ -224,10 +109,7 @@ const ContactStage::SpringChanges& ContactStage::spring_changes(
 }
 
 void ContactStage::set_analysis(Analysis analysis) {
-  const bool inertia = analysis == Analysis::dynamic;
-  parameters_.sliding_stiffness =
-      inertia ? 0.0 : kSlidingStiffnessFraction * parameters_.shear_stiffness;
-  parameters_.forgive_unresisted_overlap = !inertia;
+  set_contact_analysis(rules_.parameters, analysis);
 }
 
 void ContactStage::carry_contacts_from(const ContactStage& old) {
@@ -255,7 +137,8 @@ void ContactStage::carry_contacts_from(const ContactStage& old) {
 }
 
 bool ContactStage::detect(std::span<const double> positions) {
-  const auto candidates = detect_contacts(boundary_, positions, rules_, parameters_.reach);
+  const auto candidates =
+      detect_contacts(boundary_, positions, rules_.touching, rules_.parameters.reach);
   std::vector<Contact> next;
   next.reserve(candidates.size());
   bool changed = candidates.size() != contacts_.size();
@@ -270,13 +153,13 @@ bool ContactStage::detect(std::span<const double> positions) {
     const auto vb =
         std::lower_bound(boundary_.vertices.begin(), boundary_.vertices.end(), c.vertex);
     const std::int32_t vertex_block = boundary_.vertex_block[vb - boundary_.vertices.begin()];
-    const std::size_t k = static_cast<std::size_t>(rules_.block_body[vertex_block]) *
-                              static_cast<std::size_t>(rules_.num_bodies) +
-                          static_cast<std::size_t>(rules_.block_body[edge_block]);
-    c.friction = joint_friction_[k];
-    c.cohesion = joint_cohesion_[k];
-    c.tensile_strength = joint_tensile_[k];
-    c.area = vertex_area_[vb - boundary_.vertices.begin()];
+    const std::size_t k = static_cast<std::size_t>(rules_.touching.block_body[vertex_block]) *
+                              static_cast<std::size_t>(rules_.touching.num_bodies) +
+                          static_cast<std::size_t>(rules_.touching.block_body[edge_block]);
+    c.friction = rules_.joints.friction[k];
+    c.cohesion = rules_.joints.cohesion[k];
+    c.tensile_strength = rules_.joints.tensile[k];
+    c.area = rules_.vertex_area[vb - boundary_.vertices.begin()];
     // What the contact remembers comes from the same pair, or else from the same vertex
     // against the same block: a vertex sliding onto the next edge keeps sliding (starting it
     // locked again would catch the block at every mesh node it passes).
@@ -303,7 +186,7 @@ bool ContactStage::detect(std::span<const double> positions) {
       // Faces meshed onto each other touch up to round-off: they start closed, and a joint
       // with cohesion or tensile strength holds them bonded until it slides or opens; faces
       // that meet later touch without a bond.
-      const bool touching = gap <= 1e-9 * parameters_.reach;
+      const bool touching = gap <= 1e-9 * rules_.parameters.reach;
       c.bonded = touching && !started_ && (c.cohesion > 0.0 || c.tensile_strength > 0.0);
       c.state = !touching                      ? ContactState::open
                 : c.friction > 0.0 || c.bonded ? ContactState::locked
@@ -315,13 +198,13 @@ bool ContactStage::detect(std::span<const double> positions) {
       // seeing the block arrested, would read that as friction holding them and lock too:
       // the DDA update v1 = 2 du / dt - v0 turned such an arrest into a bounce
       // (docs/method-choices.md, "Friction with inertia").
-      if (touching && started_ && !c.bonded && parameters_.sliding_stiffness == 0.0) {
+      if (touching && started_ && !c.bonded && rules_.parameters.sliding_stiffness == 0.0) {
         c.state = ContactState::sliding;
         c.friction_force = 0.0;
         c.slip_sign = 0.0;
       }
     }
-    c.slide_stiffness = parameters_.sliding_stiffness;
+    c.slide_stiffness = rules_.parameters.sliding_stiffness;
     c.anchor_start = c.shear_spring;
     linearise(c, positions);
     // The step starts from the force the contact ended the last step with. Between two steps
@@ -343,7 +226,8 @@ bool ContactStage::detect(std::span<const double> positions) {
     // that stood between them), or copies of a split node leaving the corner they shared. No
     // solve resisted that overlap and no work made it, so with inertia too it is forgiven;
     // in the first step the scene's own overlaps still push.
-    const bool forgive = parameters_.forgive_unresisted_overlap || (before == nullptr && started_);
+    const bool forgive =
+        rules_.parameters.forgive_unresisted_overlap || (before == nullptr && started_);
     double overlap =
         before != nullptr ? std::min(before->unresisted_overlap, std::max(-c.gap_start, 0.0)) : 0.0;
     if (c.state != ContactState::open && forgive)
@@ -352,7 +236,7 @@ bool ContactStage::detect(std::span<const double> positions) {
     c.gap_offset += overlap;
     c.gap_start += overlap;
     c.start_normal_force = c.state != ContactState::open && c.gap_start < 0.0
-                               ? -parameters_.normal_stiffness * c.gap_start
+                               ? -rules_.parameters.normal_stiffness * c.gap_start
                                : -1.0;
     next.push_back(c);
   }
@@ -373,7 +257,7 @@ std::vector<std::int32_t> ContactStage::triples() const {
 
 void ContactStage::add_spring_forces(std::span<const double> positions,
                                      std::span<double> force) const {
-  const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
+  const double kn = rules_.parameters.normal_stiffness, ks = rules_.parameters.shear_stiffness;
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::open) continue;
     add_to_nodes(c, c.g, kn * linear_gap(c, positions), force);
@@ -390,13 +274,13 @@ void ContactStage::add_spring_forces(std::span<const double> positions,
 const SlotMatrices& ContactStage::spring_matrices(std::int32_t first_slot) {
   SlotMatrices& matrices = spring_matrices_;
   matrices.clear();
-  const double kn = parameters_.normal_stiffness;
+  const double kn = rules_.parameters.normal_stiffness;
   for (std::size_t i = 0; i < contacts_.size(); ++i) {
     const Contact& c = contacts_[i];
     if (c.state == ContactState::open) continue;
     // kn g g^T, plus ks t t^T locked or the sliding spring k_slide t t^T sliding.
     const double k_shear =
-        c.state == ContactState::locked ? parameters_.shear_stiffness : c.slide_stiffness;
+        c.state == ContactState::locked ? rules_.parameters.shear_stiffness : c.slide_stiffness;
     double* ku = matrices.add(first_slot + static_cast<std::int32_t>(i));
     for (int r = 0; r < 6; ++r)
       for (int s = r; s < 6; ++s, ++ku) *ku = kn * c.g[r] * c.g[s] + k_shear * c.t[r] * c.t[s];
@@ -406,7 +290,7 @@ const SlotMatrices& ContactStage::spring_matrices(std::int32_t first_slot) {
 
 int ContactStage::update_states(std::span<const double> positions, double tolerance_scale,
                                 bool settle, double& largest_penetration) {
-  const double kn = parameters_.normal_stiffness;
+  const double kn = rules_.parameters.normal_stiffness;
   largest_penetration = 0.0;
   double largest_gap = 0.0;  // the largest normal force, over kn: penetration or bond tension
   for (const Contact& c : contacts_)
@@ -416,7 +300,7 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       largest_gap = std::max(largest_gap, std::abs(gap));
     }
   // An iteration that ran away settles nothing: it must come back within the limit.
-  const bool runaway = largest_penetration > parameters_.penetration_limit;
+  const bool runaway = largest_penetration > rules_.parameters.penetration_limit;
   if (runaway) settle = false;
   // The iteration has settled when the forces the solve assumed match the states its result
   // implies, to a small fraction of the largest contact force (or of the forces that flow
@@ -424,8 +308,8 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
   // would otherwise flip back and forth forever: a contact changes between open and closed
   // only when its gap leaves the band [-tolerance, tolerance] / kn, and a change of shear
   // force smaller than the tolerance does not hold the iteration back.
-  const double tolerance =
-      tolerance_scale * parameters_.force_tolerance * std::max(kn * largest_gap, force_scale_);
+  const double tolerance = tolerance_scale * rules_.parameters.force_tolerance *
+                           std::max(kn * largest_gap, force_scale_);
   const double band = tolerance / kn;
   int changes = 0;
   for (Contact& c : contacts_) {
@@ -465,7 +349,7 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       c.shear_spring = -std::clamp(touched, 0.0, 1.0) * slip;
       c.anchor_start = c.shear_spring;
     }
-    const ShearUpdate shear = parameters_.sliding_stiffness > 0.0
+    const ShearUpdate shear = rules_.parameters.sliding_stiffness > 0.0
                                   ? update_shear_without_inertia(c, gap, slip, tolerance)
                                   : update_shear_with_inertia(c, gap, slip, tolerance);
     changes += shear.bond_broke ? 1 : 0;
@@ -491,7 +375,7 @@ double ContactStage::friction_normal_force(Contact& c, double gap) const {
   // friction takes the normal force it had at the start of the step, if it was pressed then
   // (lagged by a step, like the load), or else the mean of this normal force and the one it
   // used last, which damps the swing; when the iteration settles the two agree.
-  double normal_force = std::max(-parameters_.normal_stiffness * gap, 0.0);
+  double normal_force = std::max(-rules_.parameters.normal_stiffness * gap, 0.0);
   if (c.shear_swings >= 2)
     normal_force = c.start_normal_force >= 0.0 ? c.start_normal_force
                                                : 0.5 * (normal_force + c.used_normal_force);
@@ -514,7 +398,7 @@ double ContactStage::shear_capacity(Contact& c, double normal_force, double elas
 
 ContactStage::ShearUpdate ContactStage::update_shear_with_inertia(Contact& c, double gap,
                                                                   double slip, double tolerance) {
-  const double ks = parameters_.shear_stiffness;
+  const double ks = rules_.parameters.shear_stiffness;
   const ContactState before = c.state;
   ShearUpdate out;
   // The shear force this solve assumed, at its result (none if it was open).
@@ -570,7 +454,7 @@ ContactStage::ShearUpdate ContactStage::update_shear_with_inertia(Contact& c, do
 ContactStage::ShearUpdate ContactStage::update_shear_without_inertia(Contact& c, double gap,
                                                                      double slip,
                                                                      double tolerance) {
-  const double ks = parameters_.shear_stiffness;
+  const double ks = rules_.parameters.shear_stiffness;
   const ContactState before = c.state;
   ShearUpdate out;
   // The shear force the solve had at its result, from the spring of the contact's state: a
@@ -588,7 +472,7 @@ ContactStage::ShearUpdate ContactStage::update_shear_without_inertia(Contact& c,
     // carrying the force it has.
     if (before == ContactState::sliding) c.shear_spring = out.assumed / ks - slip;
     c.state = ContactState::locked;
-    c.slide_stiffness = parameters_.sliding_stiffness;
+    c.slide_stiffness = rules_.parameters.sliding_stiffness;
     c.last_excess = 0.0;
     out.implied = out.assumed;
     return out;
@@ -601,8 +485,8 @@ ContactStage::ShearUpdate ContactStage::update_shear_without_inertia(Contact& c,
   // first, so that it reaches the limit in a few iterations instead of hundreds.
   if (before == ContactState::sliding && sign == c.slip_sign && excess > 0.5 * c.last_excess &&
       excess > tolerance)
-    c.slide_stiffness =
-        std::max(0.5 * c.slide_stiffness, kMinSlidingStiffness * parameters_.sliding_stiffness);
+    c.slide_stiffness = std::max(0.5 * c.slide_stiffness,
+                                 kMinSlidingStiffness * rules_.parameters.sliding_stiffness);
   c.last_excess = excess;
   c.state = ContactState::sliding;
   c.slip_sign = sign;
@@ -631,9 +515,9 @@ double ContactStage::spring_energy_at(std::span<const double> positions) const {
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::open) continue;
     const auto [normal, shear] =
-        spring_forces(c, parameters_, linear_gap(c, positions), step_slip(c, positions));
-    energy += 0.5 * (normal * normal / parameters_.normal_stiffness +
-                     shear * shear / parameters_.shear_stiffness);
+        spring_forces(c, rules_.parameters, linear_gap(c, positions), step_slip(c, positions));
+    energy += 0.5 * (normal * normal / rules_.parameters.normal_stiffness +
+                     shear * shear / rules_.parameters.shear_stiffness);
   }
   return energy;
 }
@@ -651,17 +535,17 @@ void ContactStage::add_committed_forces(std::span<const double> positions,
                                         std::span<double> force) const {
   for (const Contact& c : contacts_) {
     if (c.state == ContactState::open) continue;
-    add_to_nodes(c, c.g, parameters_.normal_stiffness * linear_gap(c, positions), force);
+    add_to_nodes(c, c.g, rules_.parameters.normal_stiffness * linear_gap(c, positions), force);
     const double shear =
         c.state == ContactState::locked
-            ? parameters_.shear_stiffness * c.shear_spring
+            ? rules_.parameters.shear_stiffness * c.shear_spring
             : -c.friction_force + c.slide_stiffness * (step_slip(c, positions) - c.slide_slip);
     add_to_nodes(c, c.t, shear, force);
   }
 }
 
 void ContactStage::commit(std::span<const double> positions) {
-  const double kn = parameters_.normal_stiffness, ks = parameters_.shear_stiffness;
+  const double kn = rules_.parameters.normal_stiffness, ks = rules_.parameters.shear_stiffness;
   spring_energy_ = 0.0;
   for (Contact& c : contacts_) {
     if (c.state == ContactState::open) {
@@ -672,7 +556,7 @@ void ContactStage::commit(std::span<const double> positions) {
     // followed in this step (plastic slip, from where it stood at the step start or closing).
     const double slip = step_slip(c, positions);
     c.end_gap = linear_gap(c, positions);
-    const auto [normal, shear] = spring_forces(c, parameters_, c.end_gap, slip);
+    const auto [normal, shear] = spring_forces(c, rules_.parameters, c.end_gap, slip);
     spring_energy_ += 0.5 * (normal * normal / kn + shear * shear / ks);
     friction_dissipation_ += std::abs(shear) * std::abs(c.anchor_start - c.shear_spring);
     // The anchor is kept in the next step's slip coordinate, which starts from 0.

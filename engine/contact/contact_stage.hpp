@@ -12,67 +12,13 @@
 
 #include "engine/assembly/low_rank_terms.hpp"
 #include "engine/assembly/slot_matrices.hpp"
+#include "engine/contact/contact.hpp"
 #include "engine/contact/contact_detection.hpp"
+#include "engine/contact/contact_rules.hpp"
 #include "engine/model/model.hpp"
 #include "engine/scene/scene.hpp"
 
 namespace rockdd {
-
-/// Open: no spring. Sliding: normal spring, friction force. Locked: normal and shear springs.
-enum class ContactState : std::uint8_t { open, sliding, locked };
-
-/// The springs a contact adds to K: kn g g^T when closed, shear_stiffness t t^T.
-struct ContactSprings {
-  bool normal = false;
-  double shear_stiffness = 0.0;  // N/m
-};
-
-/// One vertex-edge contact and what it remembers across iterations and steps.
-struct Contact {
-  std::int32_t vertex = -1, a = -1, b = -1;  // nodes: vertex p, edge a->b
-  std::int32_t edge = -1;                    // boundary edge index
-  ContactState state = ContactState::open;   // state assumed in the current solve
-  double shear_spring = 0.0;                 // committed elastic slip of a locked contact (m)
-  double slip_sign = 0.0;                    // direction of sliding
-  double friction_force = 0.0;  // of a sliding contact on its vertex, along t (last solve)
-  double friction = 0.0, cohesion = 0.0;  // tan(phi), c (Pa) of the joint
-  double tensile_strength = 0.0;          // of the joint (Pa)
-  double area = 0.0;       // joint area the contact stands for (m^2), for cohesion and tension
-  bool bonded = false;     // an intact joint: cohesion and tensile strength count until it fails
-  std::uint8_t flips = 0;  // open <-> closed changes in this step attempt
-  std::uint8_t shear_swings = 0;     // changes of the shear force beyond tolerance, this attempt
-  double used_normal_force = 0.0;    // the normal force friction used in the last update
-  double start_normal_force = -1.0;  // at the start of the step, if pressed then (else < 0)
-  // The step's linearisation about its start (what the solve sees): gap(x) = gap_offset + g.x
-  // and slip(x) = slip_offset + t.x over the dofs (p, a, b); see kernels/contact_geometry.
-  double g[6] = {}, t[6] = {};
-  double gap_offset = 0.0, slip_offset = 0.0;
-  double gap_start = 0.0;           // the gap at the start of the step
-  double slide_slip = 0.0;          // step slip where friction_force was set (without inertia)
-  double slide_stiffness = 0.0;     // its sliding spring (N/m), softened while it slides freely
-  double last_excess = 0.0;         // its shear force past the capacity, last iteration (N)
-  double anchor_start = 0.0;        // shear_spring at the step start or when it closed (m)
-  double end_gap = 0.0;             // the gap its force came from at the end of the last step (m)
-  double unresisted_overlap = 0.0;  // its zero: an overlap no solve resisted (m)
-};
-
-/// Joint parameters that contacts use, derived from the scene.
-struct ContactParameters {
-  double normal_stiffness = 0.0;   // kn, N/m
-  double shear_stiffness = 0.0;    // ks, N/m
-  double reach = 0.0;              // search distance for candidates, m
-  double force_tolerance = 1e-2;   // settled: forces within this fraction of the largest
-  double penetration_limit = 0.0;  // settled only with no contact deeper than this, m
-  double thickness = 1.0;
-  // Shear spring of a sliding contact, on its slip since the last iterate (N/m): 0 with
-  // inertia (friction is a bare load), a small fraction of ks without (analysis "static"
-  // or "quasi-static"), where nothing else would hold a block that slides.
-  double sliding_stiffness = 0.0;
-  // Without inertia, an overlap found at a step's start that no solve resisted carries no
-  // force and heals as the faces part (ContactStage::detect). With inertia the penalty
-  // spring's push-back is part of the momentum balance and stays.
-  bool forgive_unresisted_overlap = false;
-};
 
 /// Contact detection, springs and states over a step.
 class ContactStage {
@@ -153,7 +99,7 @@ class ContactStage {
   /// Contacts that kept opening and closing and were left open (cumulative).
   long normal_swings_settled() const { return normal_swings_settled_; }
 
-  const ContactParameters& parameters() const { return parameters_; }
+  const ContactParameters& parameters() const { return rules_.parameters; }
   /// Forces below force_tolerance x this scale (N) settle: the forces that flow through
   /// the model's elements, so that a fragment carrying next to nothing is not held to a
   /// tolerance far below what matters for the rest.
@@ -161,7 +107,7 @@ class ContactStage {
 
   /// The shear stiffness contact c adds to K: ks locked, its sliding spring sliding.
   double shear_stiffness(const Contact& c) const {
-    return c.state == ContactState::locked    ? parameters_.shear_stiffness
+    return c.state == ContactState::locked    ? rules_.parameters.shear_stiffness
            : c.state == ContactState::sliding ? c.slide_stiffness
                                               : 0.0;
   }
@@ -184,13 +130,10 @@ class ContactStage {
   double shear_capacity(Contact& c, double normal_force, double elastic_force, double tolerance,
                         bool& bond_broke) const;
 
-  ContactParameters parameters_;
   BlockBoundary boundary_;
-  ContactRules rules_;
+  ContactRulebook rules_;
   std::vector<Contact> contacts_;   // of the step being solved
   std::vector<Contact> committed_;  // at the end of the last committed step
-  std::vector<double> joint_friction_, joint_cohesion_, joint_tensile_;  // per body pair
-  std::vector<double> vertex_area_;  // per boundary vertex, see Contact::area
   long shear_swings_settled_ = 0, normal_swings_settled_ = 0;
   double force_scale_ = 0.0;
   double friction_dissipation_ = 0.0, spring_energy_ = 0.0;
