@@ -13,6 +13,7 @@
 #include "engine/engine.hpp"
 #include "engine/loading/boundary_conditions.hpp"
 #include "engine/loading/external_loads.hpp"
+#include "engine/report/run_result.hpp"
 #include "engine/solver/cholmod_solver.hpp"
 
 namespace rockdd {

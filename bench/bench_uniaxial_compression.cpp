@@ -12,6 +12,7 @@
 #include <string>
 
 #include "engine/engine.hpp"
+#include "engine/report/run_result.hpp"
 
 namespace rockdd {
 namespace {

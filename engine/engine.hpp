@@ -10,7 +10,6 @@
 
 #include "engine/common/errors.hpp"
 #include "engine/model/model.hpp"
-#include "engine/monte_carlo/monte_carlo.hpp"
 #include "engine/report/setup_report.hpp"
 #include "engine/scene/scene.hpp"
 #include "engine/simulation.hpp"

@@ -1,4 +1,6 @@
 #include "engine/engine.hpp"
+#include "engine/monte_carlo/monte_carlo.hpp"
+#include "engine/report/run_result.hpp"
 #include "library/api_errors.hpp"
 #include "library/scene_impl.hpp"
 

@@ -1,6 +1,7 @@
 #include <memory>
 
 #include "engine/engine.hpp"
+#include "engine/report/run_result.hpp"
 #include "library/api_errors.hpp"
 #include "library/scene_impl.hpp"
 

@@ -8,6 +8,7 @@
 
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_coloring.hpp"
+#include "engine/assembly/for_each_element_by_color.hpp"
 #include "engine/assembly/internal_force.hpp"
 #include "engine/assembly/modulus_change.hpp"
 #include "engine/assembly/stiffness_layout.hpp"

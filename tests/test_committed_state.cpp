@@ -4,6 +4,7 @@
 
 #include <vector>
 
+#include "engine/report/run_result.hpp"
 #include "test_support.hpp"
 
 namespace rockdd {

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "engine/engine.hpp"
+#include "engine/monte_carlo/monte_carlo.hpp"
+#include "engine/report/run_result.hpp"
 #include "rockdd/rockdd.h"
 #include "rockdd/rockdd.hpp"
 

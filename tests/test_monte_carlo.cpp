@@ -18,6 +18,7 @@
 #include "engine/monte_carlo/ensemble_resume.hpp"
 #include "engine/monte_carlo/ensemble_statistics.hpp"
 #include "engine/monte_carlo/ensemble_table.hpp"
+#include "engine/monte_carlo/monte_carlo.hpp"
 #include "engine/monte_carlo/weibull_fit.hpp"
 #include "test_support.hpp"
 

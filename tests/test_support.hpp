@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "engine/engine.hpp"
+#include "engine/report/run_result.hpp"
 #include "engine/scene/scene_reader.hpp"
 
 namespace rockdd::test {

@@ -20,6 +20,7 @@
 #include "engine/monte_carlo/ensemble_merge.hpp"
 #include "engine/monte_carlo/ensemble_progress.hpp"
 #include "engine/monte_carlo/ensemble_resume.hpp"
+#include "engine/report/run_result.hpp"
 #include "tools/ensemble_peers.hpp"
 #include "tools/realization_workers.hpp"
 

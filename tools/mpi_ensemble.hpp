@@ -2,6 +2,7 @@
 // rockdd mc under mpirun: rank 0 owns the ensemble folder (lock, manifest, mc.csv) and runs
 // realizations like every other rank; each rank asks rank 0 for its next seed when it has a
 // free job, and sends rank 0 the row of each realization it finished.
+#include "engine/monte_carlo/monte_carlo.hpp"
 #include "tools/monte_carlo_command.hpp"
 
 namespace rockdd::cli {

@@ -1,4 +1,5 @@
 #include "tools/realization_workers.hpp"
+#include "engine/report/run_result.hpp"
 
 #include <fcntl.h>
 #include <oneapi/tbb/global_control.h>

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "engine/engine.hpp"
+#include "engine/monte_carlo/monte_carlo.hpp"
 
 namespace rockdd::cli {
 

@@ -15,6 +15,7 @@
 
 #include "engine/common/process_clock.hpp"
 #include "engine/engine.hpp"
+#include "engine/report/run_result.hpp"
 #include "tools/monte_carlo_command.hpp"
 #ifdef ROCKDD_HAVE_MPI
 #include "tools/mpi_ensemble.hpp"

@@ -1,4 +1,5 @@
 #include "engine/assembly/assemble_stiffness.hpp"
+#include "engine/assembly/for_each_element_by_color.hpp"
 
 #include <tbb/parallel_for.h>
 

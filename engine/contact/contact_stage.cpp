@@ -62,6 +62,19 @@ double step_slip(const Contact& c, std::span<const double> positions) {
 
 }  // namespace
 
+double contact_force_scale(const Model& model, std::span<const double> reaction,
+                           std::span<const double> f_ext) {
+  double scale = 0.0;
+  for (std::size_t d = 0; d < model.X.size(); ++d)
+    scale = std::max({scale, std::abs(reaction[d]), std::abs(f_ext[d])});
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+    const double* sigma = &model.stress[3 * static_cast<std::size_t>(e)];
+    const double largest = std::max({std::abs(sigma[0]), std::abs(sigma[1]), std::abs(sigma[2])});
+    scale = std::max(scale, largest * std::sqrt(2.0 * model.area0[e]) * model.thickness);
+  }
+  return scale;
+}
+
 ContactStage::ContactStage(const Scene& scene, const Model& model, Analysis analysis)
     : boundary_(extract_block_boundary(model)),
       rules_(contact_rules(scene, model, boundary_, analysis)) {}
@@ -112,31 +125,30 @@ void ContactStage::set_analysis(Analysis analysis) {
   set_contact_analysis(rules_.parameters, analysis);
 }
 
-void ContactStage::carry_contacts_from(const ContactStage& old) {
+void ContactStage::carry_contacts_from(const ContactStage& old, std::vector<Contact>& committed) {
   // Boundary edges are renumbered; a contact keeps its state if its edge still exists.
   std::map<std::pair<std::int32_t, std::int32_t>, std::int32_t> edge_of;
   for (std::size_t i = 0; 2 * i + 1 < boundary_.edge_nodes.size(); ++i)
     edge_of[{boundary_.edge_nodes[2 * i], boundary_.edge_nodes[2 * i + 1]}] =
         static_cast<std::int32_t>(i);
-  committed_.clear();
-  for (Contact c : old.committed_) {
+  std::vector<Contact> kept;
+  for (Contact c : committed) {
     const auto found = edge_of.find({c.a, c.b});
     if (found == edge_of.end()) continue;
     c.edge = found->second;
-    committed_.push_back(c);
+    kept.push_back(c);
   }
-  std::sort(committed_.begin(), committed_.end(), [](const Contact& x, const Contact& y) {
+  std::sort(kept.begin(), kept.end(), [](const Contact& x, const Contact& y) {
     return x.vertex != y.vertex ? x.vertex < y.vertex : x.edge < y.edge;
   });
-  contacts_ = committed_;
+  committed = std::move(kept);
+  contacts_ = committed;
   started_ = old.started_;
   shear_swings_settled_ = old.shear_swings_settled_;
-  friction_dissipation_ = old.friction_dissipation_;
-  spring_energy_ = old.spring_energy_;
   normal_swings_settled_ = old.normal_swings_settled_;
 }
 
-bool ContactStage::detect(std::span<const double> positions) {
+bool ContactStage::detect(std::span<const double> positions, std::span<const Contact> committed) {
   const auto candidates =
       detect_contacts(boundary_, positions, rules_.touching, rules_.parameters.reach);
   std::vector<Contact> next;
@@ -164,9 +176,9 @@ bool ContactStage::detect(std::span<const double> positions) {
     // against the same block: a vertex sliding onto the next edge keeps sliding (starting it
     // locked again would catch the block at every mesh node it passes).
     const Contact* before = nullptr;
-    auto old = std::lower_bound(committed_.begin(), committed_.end(), c.vertex,
+    auto old = std::lower_bound(committed.begin(), committed.end(), c.vertex,
                                 [](const Contact& x, std::int32_t v) { return x.vertex < v; });
-    for (; old != committed_.end() && old->vertex == c.vertex; ++old) {
+    for (; old != committed.end() && old->vertex == c.vertex; ++old) {
       if (old->edge == c.edge) {
         before = &*old;
         break;
@@ -544,9 +556,9 @@ void ContactStage::add_committed_forces(std::span<const double> positions,
   }
 }
 
-void ContactStage::commit(std::span<const double> positions) {
+double ContactStage::commit(std::span<const double> positions, double& friction_work) {
   const double kn = rules_.parameters.normal_stiffness, ks = rules_.parameters.shear_stiffness;
-  spring_energy_ = 0.0;
+  double spring_energy = 0.0;
   for (Contact& c : contacts_) {
     if (c.state == ContactState::open) {
       c.shear_spring = 0.0;
@@ -557,14 +569,14 @@ void ContactStage::commit(std::span<const double> positions) {
     const double slip = step_slip(c, positions);
     c.end_gap = linear_gap(c, positions);
     const auto [normal, shear] = spring_forces(c, rules_.parameters, c.end_gap, slip);
-    spring_energy_ += 0.5 * (normal * normal / kn + shear * shear / ks);
-    friction_dissipation_ += std::abs(shear) * std::abs(c.anchor_start - c.shear_spring);
+    spring_energy += 0.5 * (normal * normal / kn + shear * shear / ks);
+    friction_work += std::abs(shear) * std::abs(c.anchor_start - c.shear_spring);
     // The anchor is kept in the next step's slip coordinate, which starts from 0.
     c.shear_spring += slip;
     c.anchor_start = c.shear_spring;
   }
   started_ = true;
-  committed_ = contacts_;
+  return spring_energy;
 }
 
 }  // namespace rockdd

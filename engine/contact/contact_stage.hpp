@@ -20,6 +20,12 @@
 
 namespace rockdd {
 
+/// The force scale of a state without inertia (N), below which contact forces need not be
+/// resolved: the largest force an element edge carries (|sigma| sqrt(2 A) t, from
+/// model.stress), load (`f_ext`) or reaction (`reaction`) on a node.
+double contact_force_scale(const Model& model, std::span<const double> reaction,
+                           std::span<const double> f_ext);
+
 /// Contact detection, springs and states over a step.
 class ContactStage {
  public:
@@ -32,9 +38,10 @@ class ContactStage {
   /// (a run that goes on with inertia: fracture.snap_back = "dynamic").
   void set_analysis(Analysis analysis);
 
-  /// Finds the contacts at `positions`; keeps the state of pairs that persist. Returns true
-  /// when the set of (vertex, a, b) triples changed (the pattern must be rebuilt).
-  bool detect(std::span<const double> positions);
+  /// Finds the contacts at `positions`; the pairs that persist from the committed contacts
+  /// `committed` (sorted by vertex and edge) keep their state. Returns true when the set of
+  /// (vertex, a, b) triples changed (the pattern must be rebuilt).
+  bool detect(std::span<const double> positions, std::span<const Contact> committed);
   /// Node triples (vertex, a, b) of the contacts, appended to the element connectivity
   /// when the stiffness layout is built.
   std::vector<std::int32_t> triples() const;
@@ -55,8 +62,12 @@ class ContactStage {
   int update_states(std::span<const double> positions, double tolerance_scale, bool settle,
                     double& largest_penetration);
   /// Commits a converged step ending at `positions`: the elastic slip of locked contacts
-  /// accumulates, other contacts forget theirs.
-  void commit(std::span<const double> positions);
+  /// accumulates, other contacts forget theirs; contacts() are then the committed contacts.
+  /// Adds friction's work over the slip the anchors followed in the step to `friction_work`
+  /// (J per the thickness), contact by contact; returns the springs' elastic energy (J).
+  double commit(std::span<const double> positions, double& friction_work);
+  /// The contacts of the step being solved (after commit(): as committed).
+  const std::vector<Contact>& contacts() const { return contacts_; }
   /// Adds to `force` (2 per node) the forces of the closed contacts at `positions` after
   /// commit(): a locked contact's shear is its committed elastic slip, which add_spring_forces
   /// would count twice with the step's slip.
@@ -78,15 +89,11 @@ class ContactStage {
   const SpringChanges& spring_changes(std::span<const ContactSprings> before,
                                       std::span<const std::int32_t> equation);
 
-  /// After fracture rebuilt the blocks: takes over the committed contacts of the stage
-  /// before, where their vertex and edge still exist (node ids survive a split).
-  void carry_contacts_from(const ContactStage& old);
+  /// After fracture rebuilt the blocks: takes over the committed contacts `committed` of the
+  /// stage `old`, where their vertex and edge still exist (node ids survive a split), with
+  /// their edges renumbered in `committed`.
+  void carry_contacts_from(const ContactStage& old, std::vector<Contact>& committed);
 
-  /// Work of friction since the start (J per the thickness): the shear force times the slip
-  /// that the anchors followed, summed over committed steps.
-  double friction_dissipation() const { return friction_dissipation_; }
-  /// Elastic energy of the closed contacts' springs at the last commit (J).
-  double spring_energy() const { return spring_energy_; }
   /// Elastic energy the closed contacts' springs would hold at `positions`, in their current
   /// states (J; as spring_energy() counts it at a commit).
   double spring_energy_at(std::span<const double> positions) const;
@@ -132,11 +139,9 @@ class ContactStage {
 
   BlockBoundary boundary_;
   ContactRulebook rules_;
-  std::vector<Contact> contacts_;   // of the step being solved
-  std::vector<Contact> committed_;  // at the end of the last committed step
+  std::vector<Contact> contacts_;  // of the step being solved
   long shear_swings_settled_ = 0, normal_swings_settled_ = 0;
   double force_scale_ = 0.0;
-  double friction_dissipation_ = 0.0, spring_energy_ = 0.0;
 
   SlotMatrices spring_matrices_;  // scratch of spring_matrices()
   SpringChanges spring_changes_;  // scratch of spring_changes()

@@ -48,6 +48,8 @@ class FragmentRestraint {
   void anchor_new_springs(const FragmentRestraint& before, std::span<const double> du);
 
   std::size_t num_dofs() const { return dofs_.size(); }
+  /// Same dofs, springs and anchors.
+  bool operator==(const FragmentRestraint& other) const = default;
   /// Whether both hold the same dofs with the same springs (anchors aside).
   bool same_springs(const FragmentRestraint& other) const {
     return dofs_ == other.dofs_ && stiffness_ == other.stiffness_;

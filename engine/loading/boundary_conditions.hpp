@@ -57,4 +57,11 @@ std::vector<std::uint8_t> unrestrained_groups(const Model& model, const Boundary
 /// InputError naming the first block that is not (and its body).
 void check_static_restraint(const Scene& scene, const Model& model, const BoundaryConditions& bc);
 
+/// The constraints' force on the body at a dof: at a prescribed one, what the body's own
+/// forces leave unbalanced there (f_int + f_contact + restraint - f_ext); elsewhere 0.
+inline double constraint_force(bool prescribed, double f_int, double f_contact, double restraint,
+                               double f_ext) {
+  return prescribed ? f_int + f_contact + restraint - f_ext : 0.0;
+}
+
 }  // namespace rockdd

@@ -1,0 +1,128 @@
+// The damage iteration of a step attempt (METHOD.md "Elastic damage"): the laws evaluated at
+// each solve, the re-solve's preparation when elements newly damage, and the energy the passes
+// release (damage and snap-back).
+#include <algorithm>
+
+#include "engine/assembly/internal_force.hpp"
+#include "engine/assembly/modulus_change.hpp"
+#include "engine/common/timers.hpp"
+#include "engine/contact/contact_stage.hpp"
+#include "engine/damage/damage_energy.hpp"
+#include "engine/damage/damage_stage.hpp"
+#include "engine/simulation.hpp"
+#include "engine/solver/linear_system.hpp"
+
+namespace rockdd {
+
+DamageChange Simulation::evaluate_damage() {
+  ScopedTimer timer(report_.timers.damage);
+  const std::size_t num_dofs = model_.X.size();
+  for (std::size_t d = 0; d < num_dofs; ++d) trial_.positions[d] = model_.u[d] + trial_.du[d];
+  compute_internal_force(model_, coloring_, trial_.positions, model_.strain, model_.stress,
+                         trial_.damage_force, corotational_);
+  trial_.damage_before = model_.damage;
+  const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band);
+  if (change.grown > 0) {
+    system_->invalidate();  // the moduli changed
+    // Without carried velocity the pass drops the moduli at its own strain and re-solves from
+    // there. A dynamic step instead integrates the whole step with the new moduli, from the
+    // committed state: that is where its modulus drop takes the energy.
+    trial_.energy.damage +=
+        released_by_damage(model_, trial_.damage_before,
+                           analysis_ == Analysis::dynamic ? committed_.strain : model_.strain);
+  }
+  if (change.newly_damaged > 0 && !committed_.first_damage && !trial_.first_damage)
+    trial_.first_damage = locate_first_damage(model_, report_.counters.steps + 1, trial_.time);
+  return change;
+}
+
+void Simulation::record_first_reaction() {
+  // f_int at the solution is the damage check's (before this pass drops any modulus).
+  const std::size_t num_dofs = model_.X.size();
+  std::fill(trial_.reaction_first.begin(), trial_.reaction_first.end(), 0.0);
+  if (contact_) {
+    for (std::size_t d = 0; d < num_dofs; ++d)
+      trial_.positions[d] = model_.X[d] + model_.u[d] + trial_.du[d];
+    contact_->add_spring_forces(trial_.positions, trial_.reaction_first);
+  }
+  for (std::size_t d = 0; d < num_dofs; ++d)
+    trial_.reaction_first[d] =
+        constraint_force(bc_.prescribed[d], trial_.damage_force[d], trial_.reaction_first[d],
+                         trial_.restraint_force[d], trial_.f_ext[d]);
+}
+
+double Simulation::measure_snap_back(int pass, bool settle_start, const DamageChange& change,
+                                     double released_before, double settled_energy) {
+  if (!(pass > 1 || change.grown > 0 || settle_start)) return settled_energy;
+  const std::size_t num_dofs = model_.X.size();
+  const double stored = stored_energy();  // at this solve, before its modulus drop
+  if (pass > 1 || settle_start) {
+    // The work done between the two states: in the first solve, the boundaries' and the
+    // loads' over the step's increment; later, the loads' alone (the boundaries hold).
+    double work = 0.0;
+    for (std::size_t d = 0; d < num_dofs; ++d)
+      work += pass == 1 ? 0.5 *
+                              (committed_.f_ext[d] + committed_.reaction[d] + trial_.f_ext[d] +
+                               trial_.reaction_first[d]) *
+                              trial_.du[d]
+                        : trial_.f_ext[d] * (trial_.positions[d] - trial_.positions_settled[d]);
+    const double friction =
+        contact_ ? contact_->friction_work_between(trial_.positions_settled, trial_.positions)
+                 : 0.0;
+    trial_.energy.add_snap_back(settled_energy - stored + work - friction);
+  }
+  std::swap(trial_.positions, trial_.positions_settled);
+  return stored - (trial_.energy.damage - released_before);
+}
+
+double Simulation::stored_energy() {
+  // The mass term c M of a quasi-static step is not stored: it holds the step's motion, which
+  // the next step starts without (the velocity reset), so what goes into it is released.
+  const std::size_t num_dofs = model_.X.size();
+  for (std::size_t d = 0; d < num_dofs; ++d)
+    trial_.positions[d] = model_.X[d] + model_.u[d] + trial_.du[d];
+  double energy =
+      strain_energy(model_, model_.strain, model_.stress) + fragments_.energy(trial_.du);
+  if (contact_) energy += contact_->spring_energy_at(trial_.positions);
+  return energy;
+}
+
+bool Simulation::prepare_next_pass(double mass_coefficient, bool grown) {
+  changed_elements(model_, trial_.damage_before, trial_.changed_elements);
+  const bool restraint_changed = hold_parts_cut_loose();
+  const bool folded = !restraint_changed && grown &&
+                      system_->fold_modulus_change(model_, bc_.equation, trial_.changed_elements,
+                                                   trial_.damage_before, mass_coefficient);
+  prepare_system(mass_coefficient);  // nothing left to do once folded
+  // The next solve's internal force at u_trial under the new moduli: bitwise what a full
+  // recomputation gives (the same kernel per element, summed in the same order).
+  ScopedTimer timer(report_.timers.assembly);
+  refresh_element_forces(model_, trial_.u_trial, trial_.changed_elements,
+                         trial_.trial_element_force, corotational_);
+  sum_element_forces(model_, coloring_, trial_.trial_element_force, trial_.f_int);
+  return folded;
+}
+
+bool Simulation::hold_parts_cut_loose() {
+  if (analysis_ == Analysis::dynamic) return false;  // inertia holds them
+  const bool broke = std::any_of(
+      trial_.changed_elements.begin(), trial_.changed_elements.end(),
+      [&](std::int32_t e) { return trial_.damage_before[e] < 1.0 && model_.damage[e] >= 1.0; });
+  if (!broke) return false;
+  FragmentRestraint held(model_, bc_, scene_.fracture.fragment_stiffness,
+                         scene_.fracture.loose_part_support);
+  if (held.same_springs(fragments_)) return false;
+  held.anchor_new_springs(fragments_, trial_.du);
+  fragments_ = std::move(held);
+  ++report_.counters.parts_cut_loose;
+  trial_.restraint_grown = true;
+  // The springs act on the step's increment; the next solve starts again from u_trial.
+  std::vector<double> trial_increment(model_.X.size());
+  for (std::size_t d = 0; d < trial_increment.size(); ++d)
+    trial_increment[d] = trial_.u_trial[d] - model_.u[d];
+  fragments_.forces(trial_increment, trial_.restraint_force);
+  system_->invalidate();  // K takes the new springs
+  return true;
+}
+
+}  // namespace rockdd

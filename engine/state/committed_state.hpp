@@ -1,0 +1,42 @@
+#pragma once
+// The state every step attempt starts from: what the last committed step left, after its
+// fracture. The commit is the one place that writes it, and an attempt restores the model's
+// working fields from it, so a rejected attempt leaves nothing behind. (The displacement and
+// velocity are the model's own: only the commit writes them.)
+#include <optional>
+#include <span>
+#include <vector>
+
+#include "engine/contact/contact.hpp"
+#include "engine/damage/first_damage.hpp"
+#include "engine/damage/fragment_restraint.hpp"
+#include "engine/state/energy_account.hpp"
+
+namespace rockdd {
+
+/// Damage, stresses, forces, contacts, restraint and energy at the last commit.
+struct CommittedState {
+  // Per element (strain and stress 3 each): at the committed displacement.
+  std::vector<double> damage, strain, stress;
+  // Per dof: the loads and the constraints' force, and Newmark's acceleration (0 without
+  // inertia).
+  std::vector<double> f_ext, reaction, acceleration;
+  double load_factor = 0.0;
+  // Elements' and contact springs' elastic energy: where a step that starts out of balance
+  // measures its snap-back from.
+  double stored_energy = 0.0;
+  double contact_spring_energy = 0.0;
+  // No equilibrium: the last damage pass dropped moduli without a re-solve, or nodes split.
+  bool out_of_balance = false;
+  std::vector<Contact> contacts;  // sorted by (vertex, edge)
+  FragmentRestraint restraint;
+  EnergyAccount energy;
+  std::optional<FirstDamage> first_damage;
+
+  /// Zeroed per-dof arrays for `num_dofs` dofs.
+  void resize(std::size_t num_dofs);
+  /// After nodes split (detach_damaged_elements): each new node takes its origin's values.
+  void follow_split_nodes(std::span<const std::int32_t> node_origin);
+};
+
+}  // namespace rockdd
