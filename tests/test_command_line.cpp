@@ -9,6 +9,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "test_support.hpp"
@@ -275,18 +276,67 @@ TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
       {"msh", "element_partition_tags.msh"},
       {"msh", "two_node_sections.msh"},
       {"msh", "element_count_unreadable.msh"},
+      // Issue 28: heap corruption (exit 134) and SIGSEGV (139) in Gmsh's format-4 reader.
+      {"msh", "msh4_node_count_short.msh"},
+      {"msh", "msh4_node_count_zero.msh"},
+      {"msh", "msh4_element_count_short.msh"},
+      {"msh", "msh4_element_node_negative.msh"},
+      {"msh", "msh4_binary_node_count_short.msh"},
+      // Issue 28: .geo files that meshed without limit (GBs within a minute).
+      {"geo", "kirsch_point_far.geo"},
+      {"geo", "lame_size_1e-300.geo"},
+      {"geo", "hondros_size_1e-9.geo"},
   };
+  // Issue 28's cases say what was expected and name the mesh file (its line for .msh).
+  const std::set<std::string> issue_28 = {"msh4_node_count_short.msh",
+                                          "msh4_node_count_zero.msh",
+                                          "msh4_element_count_short.msh",
+                                          "msh4_element_node_negative.msh",
+                                          "msh4_binary_node_count_short.msh",
+                                          "kirsch_point_far.geo",
+                                          "lame_size_1e-300.geo",
+                                          "hondros_size_1e-9.geo"};
   for (const auto& [kind, file] : cases) {
     test::TempDir tmp;
     std::ofstream(tmp.path() / "scene.toml")
         << "[scene]\nname = \"bad-mesh\"\n[mesh]\n"
         << kind << " = \"" << (kSource / "tests/meshes" / file).string()
         << "\"\n[[material]]\ndensity = 2000.0\nyoung = 1e9\npoisson = 0.2\n";
-    const auto inv = rockdd_cli("run scene.toml --out out", tmp.path());
-    EXPECT_EQ(inv.exit_code, 2) << file << ": " << inv.output;
-    EXPECT_NE(inv.output.find("mesh." + kind), std::string::npos) << file << ": " << inv.output;
-    EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out")) << file;
+    for (const char* verb : {"run", "check"}) {
+      // A time limit: a mesh that ran without limit fails here with 124, not after minutes.
+      const auto inv = rockdd_cli(std::string(verb) + " scene.toml --out out", tmp.path(), 60);
+      EXPECT_EQ(inv.exit_code, 2) << verb << ' ' << file << ": " << inv.output;
+      EXPECT_NE(inv.output.find("mesh." + kind), std::string::npos) << file << ": " << inv.output;
+      if (issue_28.count(file)) {
+        EXPECT_NE(inv.output.find("mesh." + kind + ": expected"), std::string::npos)
+            << file << ": " << inv.output;
+        EXPECT_NE(inv.output.find("tests/meshes/" + file), std::string::npos)
+            << file << ": " << inv.output;
+      }
+      EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out")) << file;
+    }
   }
+}
+
+TEST(CommandLine, MonteCarloRefusesABadMeshBeforeAnyWorkerOrFolder) {
+  // Issue 28: with a format-4.1 mesh Gmsh's reader corrupts its heap on, every worker was
+  // "crashed: signal 6" and the ensemble exited 1 with its folder written. The first
+  // realization is now built, as `rockdd check` builds it, before anything else.
+  test::TempDir tmp;
+  std::ofstream(tmp.path() / "scene.toml")
+      << "[scene]\nname = \"bad-mesh\"\n[mesh]\nmsh = \""
+      << (kSource / "tests/meshes/msh4_node_count_short.msh").string()
+      << "\"\n[[material]]\ndensity = 2000.0\nyoung = 1e9\npoisson = 0.2\n"
+         "tensile_strength = 1e6\nhomogeneity = 1.5\nheterogeneous = [\"young\"]\nseed = 1\n"
+         "[[boundary]]\non = \"bottom\"\nfix = [\"x\", \"y\"]\n";
+  const auto mc = rockdd_cli("mc scene.toml --realizations 2 --out mc", tmp.path(), 60);
+  EXPECT_EQ(mc.exit_code, 2) << mc.output;
+  EXPECT_NE(mc.output.find("scene.toml: mesh.msh: expected the blocks of $Nodes to hold the 1 "
+                           "nodes its header declares (line 24)"),
+            std::string::npos)
+      << mc.output;
+  EXPECT_EQ(mc.output.find("crashed"), std::string::npos) << mc.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "mc"));
 }
 
 TEST(CommandLine, UsageErrorsExitTwo) {

@@ -2,23 +2,13 @@
 
 #include <cstdio>
 #include <cstring>
-#include <iterator>
 #include <memory>
 #include <string>
 #include <unordered_set>
 
+#include "engine/mesh/msh_element_types.hpp"
+
 namespace rockdd {
-
-namespace {
-
-/// Nodes of a format-2 element type (Gmsh's MElement::getInfoMSH for types 1-31), 0 if unknown.
-int nodes_of_type(int type) {
-  static constexpr int kNodes[] = {0, 2,  3,  4,  4, 8,  6,  5,  3,  6,  9, 10, 27, 18, 14, 1,
-                                   8, 20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5,  6,  20, 35, 56};
-  return type > 0 && type < static_cast<int>(std::size(kNodes)) ? kNodes[type] : 0;
-}
-
-}  // namespace
 
 // Found by fuzzing (tests/fuzz): Gmsh 4.8's format-2 reader dereferences a null node for an
 // element that names a node tag $Nodes did not define, so a one-digit typo in a count or a
@@ -100,7 +90,7 @@ void check_msh2_node_references(const std::filesystem::path& file, const MeshSou
                 std::to_string(tag) + " with " + std::to_string(tags) + " tags (in " +
                 file.string() + ")");
         }
-        const int corners = nodes_of_type(type);
+        const int corners = msh_nodes_of_type(type);
         if (corners == 0)
           unreadable("element types 1 to 31 of format 2, got type " + std::to_string(type) +
                      " for element " + std::to_string(tag));
