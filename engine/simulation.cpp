@@ -946,13 +946,13 @@ RunResult Simulation::run(const RunOptions& options) {
   try {
     while (t < end_time * (1.0 - 1e-12)) {
       const long step = stats_.steps + 1;
-      double dt = std::min(control.dt(), end_time - t);
+      double dt = control.step_to(end_time - t);
       attempt_time_ = t + dt;
       for (int retries = 0;
            !attempt_step(step, retries, dt, load_factor(analysis_, t + dt, end_time), control);
            ++retries) {
         ++stats_.redone_steps;
-        dt = std::min(control.dt(), end_time - t);
+        dt = control.step_to(end_time - t);
         attempt_time_ = t + dt;
       }
       commit_step(dt);

@@ -234,6 +234,48 @@ TEST(CommandLine, CheckPrintsCountsAndDefaultsWithoutSolving) {
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out"));
 }
 
+TEST(CommandLine, CheckPrintsTheStepsAndTheirTime) {
+  // Issue 28: the run's length before the run. 1600 steps of 0.00625 s to time.end = 10 s on
+  // 8,100 elements: 0.69 to 8.3 us a step per element (step_budget.hpp).
+  test::TempDir tmp;
+  const auto inv = rockdd_cli(
+      "check '" + (kSource / "data/uniaxial_compression.toml").string() + "'", tmp.path());
+  ASSERT_EQ(inv.exit_code, 0) << inv.output;
+  EXPECT_NE(inv.output.find("steps: 1600 (budget 10000000, time.max_steps), fewer when the run "
+                            "ends on softening"),
+            std::string::npos)
+      << inv.output;
+  EXPECT_NE(inv.output.find("estimated run time: 8.9 to 1.1e+02 s"), std::string::npos)
+      << inv.output;
+  // time.max_steps raises the budget; the same scene under a lower one is refused.
+  const std::string scene = (kSource / "data/uniaxial_compression.toml").string();
+  EXPECT_EQ(rockdd_cli("check '" + scene + "' --set time.max_steps=1600", tmp.path()).exit_code, 0);
+  const auto refused = rockdd_cli("check '" + scene + "' --set time.max_steps=1599", tmp.path());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("time.dt: expected at most time.max_steps = 1599 steps, got "
+                                "time.end / time.dt = 10 / 0.00625 = 1600 steps"),
+            std::string::npos)
+      << refused.output;
+}
+
+TEST(CommandLine, TheLastStepIsNeverShorterThanDtMin) {
+  // Issue 28: a remainder of time.end shorter than dt_min (here 1e-9 s after four steps of
+  // 0.25 s, dt_min = 2.5e-7) was a step of its own; it is merged into the step before.
+  test::TempDir tmp;
+  const auto inv = rockdd_cli("run '" + (kSource / "data/cantilever_model_1.toml").string() +
+                                  "' --out out --quiet --set time.end=1.000000001 "
+                                  "--set time.dt=0.25",
+                              tmp.path());
+  ASSERT_EQ(inv.exit_code, 0) << inv.output;
+  const auto dir = tmp.path() / "out" / "cantilever-model-1";
+  const auto summary = nlohmann::json::parse(test::read_text(dir / "summary.json"));
+  EXPECT_EQ(summary["steps"], 4);
+  const auto history = read_text_csv(dir / "history.csv");
+  ASSERT_EQ(history.at("dt").size(), 5u);  // step 0 and four steps
+  EXPECT_DOUBLE_EQ(std::stod(history.at("dt").back()), 0.25 + 1e-9);
+  EXPECT_DOUBLE_EQ(std::stod(history.at("time").back()), 1.000000001);
+}
+
 TEST(CommandLine, EveryMalformedSceneExitsTwoNamingFileAndKeyAndWritesNothing) {
   // tests/scenes/bad/CASES.md lists each case with the key its message must name.
   const auto bad = kSource / "tests/scenes/bad";
