@@ -260,8 +260,8 @@ int check(const Command& cmd) {
   std::cout << "\nsteps: " << text
             << (scene.time.stop_at_softening ? ", fewer when the run ends on softening" : "");
   std::snprintf(text, sizeof text, "%.2g to %.2g s", time.fastest, time.slowest);
-  std::cout << "\nestimated run time: " << text
-            << " (" << rockdd::kFastestStepSecondsPerElement * 1e6 << " to "
+  std::cout << "\nestimated run time: " << text << " ("
+            << rockdd::kFastestStepSecondsPerElement * 1e6 << " to "
             << rockdd::kSlowestStepSecondsPerElement * 1e6
             << " us a step per element, measured on data/'s scenes on 2 threads; dt control, "
                "damage and contact move a run within and beyond it)";

@@ -225,9 +225,8 @@ void check_step_budget(TableReader& table, TimeSpec& time) {
   if (time.steps)
     table.fail("steps", "expected " + budget + ", got " + std::to_string(*time.steps) +
                             ": raise time.max_steps to run more");
-  table.fail("dt", "expected " + budget + ", got time.end / time.dt = " +
-                       format_number(*time.end) + " / " + format_number(time.dt) + " = " +
-                       count_text(steps) +
+  table.fail("dt", "expected " + budget + ", got time.end / time.dt = " + format_number(*time.end) +
+                       " / " + format_number(time.dt) + " = " + count_text(steps) +
                        " steps: lengthen time.dt, shorten time.end or raise time.max_steps");
 }
 
