@@ -328,6 +328,7 @@ TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
       {"geo", "kirsch_point_far.geo"},
       {"geo", "lame_size_1e-300.geo"},
       {"geo", "hondros_size_1e-9.geo"},
+      {"geo", "size_field_1e-4.geo"},
   };
   // Issue 28's cases say what was expected and name the mesh file (its line for .msh).
   const std::set<std::string> issue_28 = {"msh4_node_count_short.msh",

@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -13,6 +14,7 @@
 #include <sstream>
 #include <string>
 #include <system_error>
+#include <unordered_map>
 #include <vector>
 
 #include "engine/mesh/gmsh_session.hpp"
@@ -158,6 +160,64 @@ double geo_curve_segments_at_least(const std::filesystem::path& scratch_dir) {
     }
   }
   return segments;
+}
+
+double geo_triangles_at_least(double& longest) {
+  std::vector<std::size_t> tags;
+  std::vector<double> xyz, parametric;
+  gmsh::model::mesh::getNodes(tags, xyz, parametric, -1, -1, true, false);
+  std::unordered_map<std::size_t, std::size_t> at;
+  at.reserve(tags.size());
+  for (std::size_t n = 0; n < tags.size(); ++n) at.emplace(tags[n], n);
+  // Each curve's segments as node positions along its orientation.
+  std::map<int, std::vector<std::array<std::size_t, 2>>> segments;
+  gmsh::vectorpair curves;
+  gmsh::model::getEntities(curves, 1);
+  longest = 0.0;
+  for (const auto& [dim, curve] : curves) {
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> elements, nodes;
+    gmsh::model::mesh::getElements(types, elements, nodes, dim, curve);
+    auto& list = segments[curve];
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      if (types[t] != 1) continue;  // 2-node lines; other orders are refused later
+      for (std::size_t e = 0; e + 1 < nodes[t].size(); e += 2) {
+        const auto a = at.find(nodes[t][e]), b = at.find(nodes[t][e + 1]);
+        if (a == at.end() || b == at.end()) continue;
+        list.push_back({a->second, b->second});
+        longest = std::max(longest, std::hypot(xyz[3 * a->second] - xyz[3 * b->second],
+                                               xyz[3 * a->second + 1] - xyz[3 * b->second + 1]));
+      }
+    }
+  }
+  if (!(longest > 0) || !std::isfinite(longest)) return 0.0;
+  if (option("Mesh.MeshSizeExtendFromBoundary") == 0) {
+    // Inside, Gmsh's sizes are the model's, capped, not the boundary's.
+    double box[6] = {0, 0, 0, 0, 0, 0};
+    gmsh::model::getBoundingBox(-1, -1, box[0], box[1], box[2], box[3], box[4], box[5]);
+    const double model_size = std::hypot(box[3] - box[0], box[4] - box[1]);
+    longest = std::max(
+        longest, std::min(model_size, option("Mesh.MeshSizeMax")) * option("Mesh.MeshSizeFactor"));
+  }
+  // Each surface's area: the shoelace sum over its oriented boundary curves' segments.
+  gmsh::vectorpair surfaces;
+  gmsh::model::getEntities(surfaces, 2);
+  double area = 0.0;
+  for (const auto& surface : surfaces) {
+    gmsh::vectorpair boundary;
+    gmsh::model::getBoundary({surface}, boundary, false, true, false);
+    double twice = 0.0;
+    for (const auto& [dim, signed_curve] : boundary) {
+      const auto found = segments.find(std::abs(signed_curve));
+      if (found == segments.end()) continue;
+      const double sign = signed_curve < 0 ? -1.0 : 1.0;
+      for (const auto& [a, b] : found->second)
+        twice += sign * (xyz[3 * a] * xyz[3 * b + 1] - xyz[3 * b] * xyz[3 * a + 1]);
+    }
+    area += 0.5 * std::abs(twice);
+  }
+  const double largest = 1.5 * longest;
+  return area / (std::sqrt(3.0) / 4.0 * largest * largest);
 }
 
 }  // namespace rockdd

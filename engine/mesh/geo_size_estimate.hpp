@@ -18,4 +18,14 @@ namespace rockdd {
 /// Call with a GmshSession held.
 double geo_curve_segments_at_least(const std::filesystem::path& scratch_dir);
 
+/// What the curves' mesh says of the surfaces' before Gmsh meshes them: once it has meshed the
+/// curves of the current model (generate(1), size fields included), a lower bound on its
+/// triangles: the area of its surfaces (from their meshed boundaries) over that of an
+/// equilateral triangle of 1.5 times the longest segment. Inside a surface Gmsh's sizes come
+/// from its boundary's (Mesh.MeshSizeExtendFromBoundary; else from the model's size and
+/// Mesh.MeshSizeMax), fields and caps only make them smaller, and its edges stay within about
+/// 1.4 sizes: no triangle is larger. `longest` is set to that segment. Call with a
+/// GmshSession held.
+double geo_triangles_at_least(double& longest);
+
 }  // namespace rockdd

@@ -58,7 +58,7 @@ std::optional<double> positive_environment(const char* name) {
 }
 
 /// This process's address space (VmSize), bytes: the child starts with all of it.
-double address_space_bytes() {
+[[maybe_unused]] double address_space_bytes() {
   std::ifstream statm("/proc/self/statm");
   double pages = 0.0;
   statm >> pages;
@@ -147,22 +147,37 @@ class Child {
   double peak_bytes_ = 0.0;
 };
 
-/// Reads everything the child writes until it closes the pipe; false when `deadline` passes
-/// first.
-bool read_reply(int fd, std::chrono::steady_clock::time_point deadline, std::string& reply) {
+/// Resident memory of process `pid` (`self` for this one), bytes; 0 when it cannot be read.
+double resident_bytes(const std::string& pid) {
+  std::ifstream statm("/proc/" + pid + "/statm");
+  double size = 0.0, resident = 0.0;
+  statm >> size >> resident;
+  return resident * static_cast<double>(sysconf(_SC_PAGESIZE));
+}
+
+/// How reading a child's reply ended.
+enum class ReplyEnd { complete, late, large };
+
+/// Reads everything the child `pid` writes until it closes the pipe, unless `deadline` passes
+/// first (late) or, looked at every 0.1 s, its resident memory exceeds `most_resident` bytes
+/// (large: the limit that holds where RLIMIT_AS cannot, under AddressSanitizer).
+ReplyEnd read_reply(int fd, pid_t pid, std::chrono::steady_clock::time_point deadline,
+                    double most_resident, std::string& reply) {
+  const std::string process = std::to_string(pid);
   char buffer[1 << 16];
   for (;;) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
         deadline - std::chrono::steady_clock::now());
-    if (left.count() <= 0) return false;
+    if (left.count() <= 0) return ReplyEnd::late;
+    if (most_resident > 0 && resident_bytes(process) > most_resident) return ReplyEnd::large;
     pollfd wanted{fd, POLLIN, 0};
-    const int ready = ::poll(&wanted, 1, static_cast<int>(std::min<long long>(left.count(), 1000)));
+    const int ready = ::poll(&wanted, 1, static_cast<int>(std::min<long long>(left.count(), 100)));
     if (ready < 0 && errno != EINTR)
       throw std::runtime_error(std::string("poll: ") + strerror(errno));
     if (ready <= 0) continue;
     const ssize_t n = ::read(fd, buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return true;  // closed: the child wrote all, or died
+    if (n <= 0) return ReplyEnd::complete;  // closed: the child wrote all, or died
     reply.append(buffer, static_cast<std::size_t>(n));
   }
 }
@@ -223,9 +238,17 @@ Mesh mesh_in_child_process(const std::function<Mesh()>& make, const MeshingLimit
   const auto deadline = start + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
                                     std::chrono::duration<double>(limits.seconds));
   const std::string limit_text = "ROCKDD_MESHING_SECONDS, ROCKDD_MESHING_BYTES; docs/stability.md";
-  if (!read_reply(pipe.read_end(), deadline, reply)) {
+  const std::string too_large =
+      "expected a mesh of " + what + " that Gmsh can make within the meshing memory limit of " +
+      megabytes(limits.bytes) + " (" + limit_text +
+      "), got one that needs more: its sizes, size fields or transfinite counts ask for more "
+      "triangles than a run could hold";
+  const double most_resident = limits.bytes > 0 ? resident_bytes("self") + limits.bytes : 0.0;
+  const ReplyEnd end = read_reply(pipe.read_end(), pid, deadline, most_resident, reply);
+  if (end != ReplyEnd::complete) {
     child.kill();
     child.wait();
+    if (end == ReplyEnd::large) source.fail(too_large);
     source.fail("expected Gmsh to mesh " + what + " within the meshing time limit of " +
                 format_number(limits.seconds) + " s (" + limit_text +
                 "), got no mesh when it ran out: its sizes, size fields or transfinite counts "
@@ -259,12 +282,7 @@ Mesh mesh_in_child_process(const std::function<Mesh()>& make, const MeshingLimit
       throw InputError(where, key, expected);
     }
     case kOutOfMemory:
-      source.fail("expected a mesh of " + what +
-                  " that Gmsh can make within the meshing memory "
-                  "limit of " +
-                  megabytes(limits.bytes) + " (" + limit_text +
-                  "), got one that needs more: its sizes, size fields or transfinite counts ask "
-                  "for more triangles than a run could hold");
+      source.fail(too_large);
     case kOtherError: {
       std::string text;
       in.text(text);

@@ -35,7 +35,10 @@ constexpr double kLeastMeshingSeconds = 60.0;
 /// What a meshing process may take.
 struct MeshingLimits {
   double seconds = 0.0;  // wall-clock time, after which it is killed
-  double bytes = 0.0;    // address space beyond the asking process's own; 0: unlimited
+  /// Memory beyond the asking process's own, bytes; 0: unlimited. Held twice: as address
+  /// space (RLIMIT_AS: an allocation beyond it fails) and as resident memory, looked at
+  /// every 0.1 s (beyond it the process is killed), which holds under AddressSanitizer too.
+  double bytes = 0.0;
 };
 
 /// The limits for a mesh made now: kMeshingBytesPerTriangle and kMeshingSecondsPerTriangle
@@ -49,7 +52,8 @@ MeshingLimits meshing_limits();
 /// it, a child that runs out of memory and one that dies on a signal (a crash in Gmsh) become
 /// an InputError through `source` that says so, naming `what` (the file or the shape). Other
 /// exceptions of the child come back as std::runtime_error with their text.
-/// Without address-space limit under AddressSanitizer, whose shadow memory needs terabytes.
+/// Under AddressSanitizer, whose shadow memory needs terabytes of address space, only the
+/// resident memory is limited.
 Mesh mesh_in_child_process(const std::function<Mesh()>& make, const MeshingLimits& limits,
                            const MeshSource& source, const std::string& what);
 

@@ -1,5 +1,6 @@
 #include "engine/mesh/msh2_node_references.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -7,8 +8,26 @@
 #include <unordered_set>
 
 #include "engine/mesh/msh_element_types.hpp"
+#include "engine/scene/mesh_budget.hpp"
 
 namespace rockdd {
+
+namespace {
+
+/// The memory budget of a file of `nodes` and `elements`, from its counts, before Gmsh reads
+/// it: every element counts as a triangle, and a node as two (a triangulation has about twice
+/// as many triangles as nodes), as in msh4_contents.
+void check_counts(double nodes, double elements, const std::filesystem::path& file,
+                  const MeshSource& source) {
+  const std::string problem =
+      mesh_budget_problem(std::max(2.0 * nodes, elements), available_memory_bytes());
+  if (!problem.empty())
+    source.fail(problem + ", counting " + count_text(elements) +
+                " elements of any kind and 2 triangles a node for " + count_text(nodes) +
+                " nodes (in " + file.string() + ")");
+}
+
+}  // namespace
 
 // Found by fuzzing (tests/fuzz): Gmsh 4.8's format-2 reader dereferences a null node for an
 // element that names a node tag $Nodes did not define, so a one-digit typo in a count or a
@@ -59,6 +78,7 @@ void check_msh2_node_references(const std::filesystem::path& file, const MeshSou
       int count = 0;
       if (std::fscanf(fp.get(), "%d", &count) != 1 || count < 0)
         unreadable("a node count after $Nodes");
+      check_counts(count, 0, file, source);
       for (int n = 0; n < count; ++n) {
         int tag = 0;
         double x, y, z;
@@ -71,6 +91,7 @@ void check_msh2_node_references(const std::filesystem::path& file, const MeshSou
       int count = 0;
       if (std::fscanf(fp.get(), "%d", &count) != 1 || count < 0)
         unreadable("an element count after $Elements");
+      check_counts(static_cast<double>(nodes.size()), count, file, source);
       for (int e = 0; e < count; ++e) {
         int tag = 0, type = 0, tags = 0, value = 0;
         if (std::fscanf(fp.get(), "%d %d %d", &tag, &type, &tags) != 3 || tags < 0)
