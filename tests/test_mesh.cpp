@@ -642,6 +642,13 @@ TEST(BadInput, GeoSizesFarBelowItsExtentAreRefusedBeforeMeshing) {
     EXPECT_NE(error.expected().find("segments on its curves"), std::string::npos) << error.what();
     EXPECT_LT(seconds, 10.0) << name;
   }
+  // Found by fuzz_geo: a point out of the plane (halved_disk.geo, z = 2) made Gmsh mesh a
+  // non-plane surface for 1 s before the mesh was refused; the model is refused first now.
+  const InputError off_plane = build_error(file(MeshSpec::Kind::geo, "geo_point_off_plane.geo"));
+  EXPECT_NE(off_plane.expected().find("expected a model in the plane z = 0 (a 2D mesh), got one "
+                                      "from z = 0 to 2"),
+            std::string::npos)
+      << off_plane.what();
   // A size field the point sizes do not show: the curves' segments do, once meshed.
   const InputError field = build_error(file(MeshSpec::Kind::geo, "size_field_1e-4.geo"));
   EXPECT_NE(field.expected().find("got at least 102640048 triangles"), std::string::npos)
