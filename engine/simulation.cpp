@@ -165,12 +165,12 @@ RunResult Simulation::run(const RunOptions& options) {
   try {
     while (t < end_time * (1.0 - 1e-12)) {
       const long step = counters.steps + 1;
-      double dt = std::min(control.dt(), end_time - t);
+      double dt = control.step_to(end_time - t);
       for (int retries = 0;
            !attempt_step(step, retries, t, dt, load_factor(analysis_, t + dt, end_time), control);
            ++retries) {
         ++counters.redone_steps;
-        dt = std::min(control.dt(), end_time - t);
+        dt = control.step_to(end_time - t);
       }
       commit_step(dt);
       // A detachment that ends the run (a static specimen that failed) still leaves the

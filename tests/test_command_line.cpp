@@ -9,6 +9,7 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <regex>
+#include <set>
 #include <sstream>
 
 #include "test_support.hpp"
@@ -233,6 +234,48 @@ TEST(CommandLine, CheckPrintsCountsAndDefaultsWithoutSolving) {
   EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out"));
 }
 
+TEST(CommandLine, CheckPrintsTheStepsAndTheirTime) {
+  // Issue 28: the run's length before the run. 1600 steps of 0.00625 s to time.end = 10 s on
+  // 8,100 elements: 0.69 to 8.3 us a step per element (step_budget.hpp).
+  test::TempDir tmp;
+  const auto inv = rockdd_cli(
+      "check '" + (kSource / "data/uniaxial_compression.toml").string() + "'", tmp.path());
+  ASSERT_EQ(inv.exit_code, 0) << inv.output;
+  EXPECT_NE(inv.output.find("steps: 1600 (budget 10000000, time.max_steps), fewer when the run "
+                            "ends on softening"),
+            std::string::npos)
+      << inv.output;
+  EXPECT_NE(inv.output.find("estimated run time: 8.9 to 1.1e+02 s"), std::string::npos)
+      << inv.output;
+  // time.max_steps raises the budget; the same scene under a lower one is refused.
+  const std::string scene = (kSource / "data/uniaxial_compression.toml").string();
+  EXPECT_EQ(rockdd_cli("check '" + scene + "' --set time.max_steps=1600", tmp.path()).exit_code, 0);
+  const auto refused = rockdd_cli("check '" + scene + "' --set time.max_steps=1599", tmp.path());
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("time.dt: expected at most time.max_steps = 1599 steps, got "
+                                "time.end / time.dt = 10 / 0.00625 = 1600 steps"),
+            std::string::npos)
+      << refused.output;
+}
+
+TEST(CommandLine, TheLastStepIsNeverShorterThanDtMin) {
+  // Issue 28: a remainder of time.end shorter than dt_min (here 1e-9 s after four steps of
+  // 0.25 s, dt_min = 2.5e-7) was a step of its own; it is merged into the step before.
+  test::TempDir tmp;
+  const auto inv = rockdd_cli("run '" + (kSource / "data/cantilever_model_1.toml").string() +
+                                  "' --out out --quiet --set time.end=1.000000001 "
+                                  "--set time.dt=0.25",
+                              tmp.path());
+  ASSERT_EQ(inv.exit_code, 0) << inv.output;
+  const auto dir = tmp.path() / "out" / "cantilever-model-1";
+  const auto summary = nlohmann::json::parse(test::read_text(dir / "summary.json"));
+  EXPECT_EQ(summary["steps"], 4);
+  const auto history = read_text_csv(dir / "history.csv");
+  ASSERT_EQ(history.at("dt").size(), 5u);  // step 0 and four steps
+  EXPECT_DOUBLE_EQ(std::stod(history.at("dt").back()), 0.25 + 1e-9);
+  EXPECT_DOUBLE_EQ(std::stod(history.at("time").back()), 1.000000001);
+}
+
 TEST(CommandLine, EveryMalformedSceneExitsTwoNamingFileAndKeyAndWritesNothing) {
   // tests/scenes/bad/CASES.md lists each case with the key its message must name.
   const auto bad = kSource / "tests/scenes/bad";
@@ -275,18 +318,68 @@ TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
       {"msh", "element_partition_tags.msh"},
       {"msh", "two_node_sections.msh"},
       {"msh", "element_count_unreadable.msh"},
+      // Issue 28: heap corruption (exit 134) and SIGSEGV (139) in Gmsh's format-4 reader.
+      {"msh", "msh4_node_count_short.msh"},
+      {"msh", "msh4_node_count_zero.msh"},
+      {"msh", "msh4_element_count_short.msh"},
+      {"msh", "msh4_element_node_negative.msh"},
+      {"msh", "msh4_binary_node_count_short.msh"},
+      // Issue 28: .geo files that meshed without limit (GBs within a minute).
+      {"geo", "kirsch_point_far.geo"},
+      {"geo", "lame_size_1e-300.geo"},
+      {"geo", "hondros_size_1e-9.geo"},
+      {"geo", "size_field_1e-4.geo"},
   };
+  // Issue 28's cases say what was expected and name the mesh file (its line for .msh).
+  const std::set<std::string> issue_28 = {"msh4_node_count_short.msh",
+                                          "msh4_node_count_zero.msh",
+                                          "msh4_element_count_short.msh",
+                                          "msh4_element_node_negative.msh",
+                                          "msh4_binary_node_count_short.msh",
+                                          "kirsch_point_far.geo",
+                                          "lame_size_1e-300.geo",
+                                          "hondros_size_1e-9.geo"};
   for (const auto& [kind, file] : cases) {
     test::TempDir tmp;
     std::ofstream(tmp.path() / "scene.toml")
         << "[scene]\nname = \"bad-mesh\"\n[mesh]\n"
         << kind << " = \"" << (kSource / "tests/meshes" / file).string()
         << "\"\n[[material]]\ndensity = 2000.0\nyoung = 1e9\npoisson = 0.2\n";
-    const auto inv = rockdd_cli("run scene.toml --out out", tmp.path());
-    EXPECT_EQ(inv.exit_code, 2) << file << ": " << inv.output;
-    EXPECT_NE(inv.output.find("mesh." + kind), std::string::npos) << file << ": " << inv.output;
-    EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out")) << file;
+    for (const char* verb : {"run", "check"}) {
+      // A time limit: a mesh that ran without limit fails here with 124, not after minutes.
+      const auto inv = rockdd_cli(std::string(verb) + " scene.toml --out out", tmp.path(), 60);
+      EXPECT_EQ(inv.exit_code, 2) << verb << ' ' << file << ": " << inv.output;
+      EXPECT_NE(inv.output.find("mesh." + kind), std::string::npos) << file << ": " << inv.output;
+      if (issue_28.count(file)) {
+        EXPECT_NE(inv.output.find("mesh." + kind + ": expected"), std::string::npos)
+            << file << ": " << inv.output;
+        EXPECT_NE(inv.output.find("tests/meshes/" + file), std::string::npos)
+            << file << ": " << inv.output;
+      }
+      EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out")) << file;
+    }
   }
+}
+
+TEST(CommandLine, MonteCarloRefusesABadMeshBeforeAnyWorkerOrFolder) {
+  // Issue 28: with a format-4.1 mesh Gmsh's reader corrupts its heap on, every worker was
+  // "crashed: signal 6" and the ensemble exited 1 with its folder written. The first
+  // realization is now built, as `rockdd check` builds it, before anything else.
+  test::TempDir tmp;
+  std::ofstream(tmp.path() / "scene.toml")
+      << "[scene]\nname = \"bad-mesh\"\n[mesh]\nmsh = \""
+      << (kSource / "tests/meshes/msh4_node_count_short.msh").string()
+      << "\"\n[[material]]\ndensity = 2000.0\nyoung = 1e9\npoisson = 0.2\n"
+         "tensile_strength = 1e6\nhomogeneity = 1.5\nheterogeneous = [\"young\"]\nseed = 1\n"
+         "[[boundary]]\non = \"bottom\"\nfix = [\"x\", \"y\"]\n";
+  const auto mc = rockdd_cli("mc scene.toml --realizations 2 --out mc", tmp.path(), 60);
+  EXPECT_EQ(mc.exit_code, 2) << mc.output;
+  EXPECT_NE(mc.output.find("scene.toml: mesh.msh: expected the blocks of $Nodes to hold the 1 "
+                           "nodes its header declares (line 24)"),
+            std::string::npos)
+      << mc.output;
+  EXPECT_EQ(mc.output.find("crashed"), std::string::npos) << mc.output;
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "mc"));
 }
 
 TEST(CommandLine, UsageErrorsExitTwo) {

@@ -221,6 +221,7 @@ int monte_carlo(const MonteCarloOptions& options, EnsemblePeers* peers) {
   MonteCarloPlan plan =
       plan_monte_carlo(scene, options.realizations, options.first_seed,
                        options.out.value_or(std::filesystem::path()), options.shard);
+  check_first_realization(scene, plan);  // exit 2 before a folder or a worker, not "crashed"
   return EnsembleRun(options, std::move(scene), std::move(plan), peers).run();
 }
 

@@ -77,7 +77,51 @@ nlohmann::json read_summary(const std::filesystem::path& file) {
   }
 }
 
+/// In a worker: an InputError as the three fields the parent rebuilds it from, 0-separated.
+std::string input_error_report(const InputError& error) {
+  return error.where() + '\0' + error.key() + '\0' + error.expected();
+}
+
 }  // namespace
+
+void check_first_realization(const Scene& scene, const MonteCarloPlan& plan) {
+  int pipe_fds[2];
+  if (::pipe2(pipe_fds, O_CLOEXEC) != 0)
+    throw std::runtime_error(std::string("mc: pipe: ") + strerror(errno));
+  std::fflush(nullptr);
+  const pid_t parent = ::getpid();
+  const pid_t pid = ::fork();
+  if (pid < 0) throw std::runtime_error(std::string("mc: fork: ") + strerror(errno));
+  if (pid == 0) {
+    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+    if (::getppid() != parent) ::_exit(kCrashed);
+    ::close(pipe_fds[0]);
+    int code = kOk;
+    try {
+      const Scene realization = realization_scene(scene, plan.seed(0));
+      const Simulation sim(realization, build_scene_model(realization));
+    } catch (const InputError& e) {
+      report_to_parent(pipe_fds[1], input_error_report(e));
+      code = kBadInput;
+    } catch (const std::exception&) {
+      code = kCrashed;  // the workers meet it again and record it in their rows
+    }
+    std::fflush(nullptr);
+    ::_exit(code);
+  }
+  ::close(pipe_fds[1]);
+  const std::string report = read_report(pipe_fds[0]);
+  ::close(pipe_fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != kBadInput) return;
+  const std::size_t key = report.find('\0'), expected = report.find('\0', key + 1);
+  if (key == std::string::npos || expected == std::string::npos)
+    throw InputError(scene.file.string(), "", report);
+  throw InputError(report.substr(0, key), report.substr(key + 1, expected - key - 1),
+                   report.substr(expected + 1));
+}
 
 RealizationWorkers::RealizationWorkers(const Scene& scene, const MonteCarloPlan& plan,
                                        std::vector<std::string> columns, int threads_per_run,

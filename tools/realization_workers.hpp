@@ -14,6 +14,14 @@
 
 namespace rockdd::cli {
 
+/// Builds the model of the ensemble's first realization in a worker process, as `rockdd check`
+/// does, before the ensemble makes a folder: bad input that every realization shares (a mesh
+/// file that cannot be read, a .geo beyond the meshing budget, a boundary on a curve the mesh
+/// lacks) throws its InputError here, exit 2 before a worker starts, instead of in each
+/// worker. Other failures are left to the workers, whose rows record them. With the mesh
+/// cache on, the workers then read the mesh from it.
+void check_first_realization(const Scene& scene, const MonteCarloPlan& plan);
+
 /// A realization that ended: its mc.csv row, or the bad input it found (the same for every
 /// seed: no row).
 struct FinishedRealization {

@@ -16,6 +16,7 @@
 #include "engine/common/process_clock.hpp"
 #include "engine/engine.hpp"
 #include "engine/report/run_result.hpp"
+#include "engine/scene/step_budget.hpp"
 #include "tools/monte_carlo_command.hpp"
 #ifdef ROCKDD_HAVE_MPI
 #include "tools/mpi_ensemble.hpp"
@@ -251,6 +252,20 @@ int check(const Command& cmd) {
     std::cout << ' ' << name << '(' << edges.size() / 2 << ')';
   std::cout << "\npoints:";
   for (const auto& [name, nodes] : model.sets.points) std::cout << ' ' << name;
+  // The run's length (step_budget): the steps it asks for at time.dt and their time.
+  const double steps = rockdd::scene_steps(scene.time);
+  const rockdd::RunTimeEstimate time = rockdd::estimated_run_time(steps, model.num_elements());
+  char text[160];
+  std::snprintf(text, sizeof text, "%.0f (budget %lld, time.max_steps)", steps,
+                static_cast<long long>(scene.time.max_steps));
+  std::cout << "\nsteps: " << text
+            << (scene.time.stop_at_softening ? ", fewer when the run ends on softening" : "");
+  std::snprintf(text, sizeof text, "%.2g to %.2g s", time.fastest, time.slowest);
+  std::cout << "\nestimated run time: " << text << " ("
+            << rockdd::kFastestStepSecondsPerElement * 1e6 << " to "
+            << rockdd::kSlowestStepSecondsPerElement * 1e6
+            << " us a step per element, measured on data/'s scenes on 2 threads; dt control, "
+               "damage and contact move a run within and beyond it)";
   std::cout << "\ndefaults:\n";
   for (const auto& [key, value] : scene.defaults)
     std::cout << "  " << key << " = " << value << '\n';

@@ -11,11 +11,13 @@
 #include "engine/common/errors.hpp"
 #include "engine/mesh/builtin_shapes.hpp"
 #include "engine/mesh/finish_mesh.hpp"
+#include "engine/mesh/geo_size_estimate.hpp"
 #include "engine/mesh/gmsh_model_reader.hpp"
 #include "engine/mesh/gmsh_module.hpp"
 #include "engine/mesh/gmsh_session.hpp"
 #include "engine/mesh/mesh.hpp"
 #include "engine/mesh/msh2_node_references.hpp"
+#include "engine/mesh/msh4_contents.hpp"
 #include "engine/mesh/msh_header.hpp"
 #include "engine/mesh/msh_physical_names.hpp"
 #include "engine/mesh/validate_mesh.hpp"
@@ -26,19 +28,6 @@
 namespace rockdd {
 
 namespace {
-
-std::string scene_key(MeshSpec::Kind kind) {
-  switch (kind) {
-    case MeshSpec::Kind::geo:
-      return "mesh.geo";
-    case MeshSpec::Kind::msh:
-      return "mesh.msh";
-    case MeshSpec::Kind::rectangle:
-    case MeshSpec::Kind::disk:
-      return "mesh.shape";
-  }
-  return "mesh";
-}
 
 /// Gmsh's own words for the exception in flight (Gmsh throws std::string or std::exception).
 std::string gmsh_message() {
@@ -85,9 +74,11 @@ void checked_gmsh_step(const MeshSource& source, const std::string& doing,
 /// Checks a .geo's model before Gmsh meshes it. Coordinates the engine cannot compute with
 /// (geometry_limits) send Gmsh's 1D mesher into endless recursion: a square of side 1e308 has
 /// an infinite diagonal, its size field is inf / inf = NaN, and the adaptive integration of
-/// each curve subdivides for ever, growing to GBs. A size cap far below the extent would mesh
-/// for ever too: the outer boundary is at least twice the box's longer side long, so it has at
-/// least 2 max(w, h) / h segments and the triangulation at least that many triangles less 2.
+/// each curve subdivides for ever, growing to GBs. Sizes far below the extent mesh for ever
+/// too: a size cap of 1e-3 on a 1e9 m curve, or a point size of 1e-9 on a 25 mm disk (issue
+/// 28: Gmsh grew by 60 MB/s). A triangulation has at least as many triangles as its boundary
+/// has segments less 2, and the outer boundary is at least twice the box's longer side long,
+/// so both the cap and the curves' own sizes (geo_size_estimate) bound the count from below.
 void check_geo_model(const MeshSpec& spec, const MeshSource& source) {
   double box[6] = {NAN, NAN, NAN, NAN, NAN, NAN};
   const std::string error = first_gmsh_error(
@@ -98,14 +89,48 @@ void check_geo_model(const MeshSpec& spec, const MeshSource& source) {
       source.fail("expected a model with coordinates in [-" + format_number(kLongestLength) + ", " +
                   format_number(kLongestLength) + "] m, got one from " +
                   point_text(box[0], box[1]) + " to " + point_text(box[3], box[4]));
+  // The engine is plane: a model out of z = 0 (to 1e-9 of its extent, as the mesh reader
+  // checks) is refused before Gmsh meshes it. Found by fuzzing (issue 28): a point of
+  // halved_disk.geo at z = 2 made Gmsh mesh a non-plane "plane" surface for 1 s (3.4 s in the
+  // sanitized harness) before the mesh was refused.
+  const double extent = std::hypot(box[3] - box[0], box[4] - box[1]);
+  if (std::max(std::abs(box[2]), std::abs(box[5])) > 1e-9 * extent)
+    source.fail("expected a model in the plane z = 0 (a 2D mesh), got one from z = " +
+                format_number(box[2]) + " to " + format_number(box[5]) + " (in " +
+                spec.file.string() + ")");
   double file_cap = 0.0;
   gmsh::option::getNumber("Mesh.MeshSizeMax", file_cap);
   const double cap = std::min(spec.element_size.value_or(file_cap), file_cap);
   const double segments = 2.0 * std::max(box[3] - box[0], box[4] - box[1]) / cap;
-  const std::string problem =
+  std::string problem =
       mesh_budget_problem(std::max(segments - 2.0, 0.0), available_memory_bytes(), true);
   if (!problem.empty())
     (spec.element_size ? MeshSource{source.where, "mesh.element_size"} : source).fail(problem);
+  double on_curves = 0.0;
+  const std::string sizes_error = first_gmsh_error(
+      [&] { on_curves = geo_curve_segments_at_least(std::filesystem::temp_directory_path()); });
+  if (!sizes_error.empty()) return;  // meshing will report it
+  problem = mesh_budget_problem(std::max(on_curves - 2.0, 0.0), available_memory_bytes(), true);
+  if (!problem.empty())
+    source.fail(problem + " (from its sizes Gmsh would put at least " + count_text(on_curves) +
+                " segments on its curves, and a triangulation has at least as many triangles "
+                "as boundary segments less 2; in " +
+                spec.file.string() + ")");
+}
+
+/// Checks a .geo's surfaces once Gmsh has meshed its curves: a size field far below the
+/// extent (1e-4 on a unit square: 1.2e8 triangles) is invisible to the sizes of the points,
+/// but not to the curves' segments (geo_triangles_at_least).
+void check_geo_surfaces(const MeshSpec& spec, const MeshSource& source) {
+  double longest = 0.0, triangles = 0.0;
+  if (!first_gmsh_error([&] { triangles = geo_triangles_at_least(longest); }).empty()) return;
+  const std::string problem = mesh_budget_problem(triangles, available_memory_bytes(), true);
+  if (!problem.empty())
+    source.fail(problem + " (its curves meshed, their longest segment is " +
+                format_number(longest) +
+                " m, and no triangle of its surfaces is larger than 1.5 "
+                "times that a side; in " +
+                spec.file.string() + ")");
 }
 
 /// Hands Gmsh the scene's 2D algorithm and smoothing passes (nullopt: Gmsh's or the .geo's own).
@@ -144,6 +169,21 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
       if (spec.element_size) gmsh::option::setNumber("Mesh.MeshSizeMax", *spec.element_size);
       set_mesher_options(spec, source);
       check_geo_model(spec, source);
+      // The curves first: their mesh, size fields included, bounds the surfaces' from below
+      // before Gmsh meshes them. generate(2) goes on from it; without renumbering in between
+      // (Mesh.Renumber, restored for the end) the mesh is bitwise the one generate(2) makes
+      // alone (renumbered, the notched bar got 10,620 triangles instead of 10,610).
+      checked_gmsh_step(
+          source, "Gmsh could not mesh the curves of the file",
+          [] {
+            double renumber = 1.0;
+            gmsh::option::getNumber("Mesh.Renumber", renumber);
+            gmsh::option::setNumber("Mesh.Renumber", 0);
+            gmsh::model::mesh::generate(1);
+            gmsh::option::setNumber("Mesh.Renumber", renumber);
+          },
+          spec.file);
+      check_geo_surfaces(spec, source);
       generate("the file");
       return;
     case MeshSpec::Kind::msh:
@@ -151,6 +191,7 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
       check_msh_header(spec.file, source);
       check_msh2_node_references(spec.file, source);
       check_msh_physical_names(spec.file, source);
+      check_msh4_contents(spec.file, source);
       open();
       return;
     case MeshSpec::Kind::rectangle:
@@ -171,7 +212,7 @@ void make_gmsh_mesh(const MeshSpec& spec, const MeshSource& source) {
 
 Mesh mesh_with_gmsh(const MeshSpec& spec, const std::filesystem::path& scene_file,
                     int gmsh_threads) {
-  const MeshSource source{scene_file.string(), scene_key(spec.kind)};
+  const MeshSource source{scene_file.string(), mesh_key(spec)};
   TaggedMesh raw;
   {
     GmshSession session(gmsh_threads);

@@ -1,4 +1,5 @@
 #include "engine/mesh/gmsh_module.hpp"
+#include "engine/mesh/mesher_process.hpp"
 
 #include <dlfcn.h>
 #include <sys/stat.h>
@@ -92,8 +93,15 @@ std::string gmsh_library_identity() {
          std::to_string(status.st_mtim.tv_sec) + "." + std::to_string(status.st_mtim.tv_nsec);
 }
 
-Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file, int gmsh_threads) {
+Mesh build_mesh_in_this_process(const MeshSpec& spec, const std::filesystem::path& scene_file,
+                                int gmsh_threads) {
   return gmsh_module().mesh(spec, scene_file, gmsh_threads);
+}
+
+Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file, int gmsh_threads) {
+  return mesh_in_child_process(
+      [&] { return build_mesh_in_this_process(spec, scene_file, gmsh_threads); }, meshing_limits(),
+      MeshSource{scene_file.string(), mesh_key(spec)}, mesh_name(spec));
 }
 
 }  // namespace rockdd

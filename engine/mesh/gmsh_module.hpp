@@ -27,6 +27,11 @@ Mesh mesh_with_gmsh(const MeshSpec& spec, const std::filesystem::path& scene_fil
 /// the places it looked when it cannot be opened.
 const GmshModuleEntry& gmsh_module();
 
+/// build_mesh without its meshing process: Gmsh runs in this process, without limits, and a
+/// crash in Gmsh is this process's. For the fuzz harnesses, which must see Gmsh's crashes.
+Mesh build_mesh_in_this_process(const MeshSpec& spec, const std::filesystem::path& scene_file,
+                                int gmsh_threads = 1);
+
 /// Identifies the Gmsh library that the module would load without loading it: its resolved
 /// file name (with the full version), size and modification time; for the mesh cache's key.
 /// Empty when the file cannot be found (the caller then asks the module for its version).

@@ -29,6 +29,8 @@ struct Mesh {
 
 /// Meshes (or reads) what `spec` describes through the Gmsh API; validates the result.
 /// `scene_file` names the scene in error messages. Throws InputError on bad input.
+/// Gmsh runs in a child process with memory and time limits (mesher_process): a mesh beyond
+/// them, or a crash in Gmsh, is an InputError too.
 /// `gmsh_threads`: Gmsh's General.NumThreads (GmshSession); the engine passes 1, since Gmsh's
 /// threaded meshing is not deterministic (docs/meshing.md). More only for tools/mesh_study.
 Mesh build_mesh(const MeshSpec& spec, const std::filesystem::path& scene_file,

@@ -11,13 +11,13 @@
 #include <sstream>
 #include <string_view>
 #include <system_error>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "engine/common/atomic_file.hpp"
 #include "engine/common/content_hash.hpp"
 #include "engine/mesh/gmsh_module.hpp"
+#include "engine/mesh/mesh_bytes.hpp"
 #include "engine/mesh/mesh_errors.hpp"
 #include "engine/scene/mesh_budget.hpp"
 
@@ -70,75 +70,6 @@ bool reads_other_files(const std::string& geo) {
   return std::regex_search(geo, other_file);
 }
 
-/// The host's layout; the byte-order mark after the magic keeps another machine's entries out.
-class Writer {
- public:
-  template <class T>
-  void value(const T& v) {
-    static_assert(std::is_trivially_copyable_v<T>);
-    bytes_.append(reinterpret_cast<const char*>(&v), sizeof v);
-  }
-  void text(std::string_view s) {
-    value<std::uint64_t>(s.size());
-    bytes_.append(s);
-  }
-  template <class T>
-  void array(std::span<const T> v) {
-    value<std::uint64_t>(v.size());
-    bytes_.append(reinterpret_cast<const char*>(v.data()), v.size() * sizeof(T));
-  }
-  template <class T>
-  void array(const std::vector<T>& v) {
-    array(std::span<const T>(v));
-  }
-  std::string& bytes() { return bytes_; }
-
- private:
-  std::string bytes_;
-};
-
-class Reader {
- public:
-  explicit Reader(std::string_view bytes) : rest_(bytes) {}
-  template <class T>
-  bool value(T& v) {
-    if (rest_.size() < sizeof v) return false;
-    std::memcpy(&v, rest_.data(), sizeof v);
-    rest_.remove_prefix(sizeof v);
-    return true;
-  }
-  bool text(std::string& s) {
-    std::uint64_t n = 0;
-    if (!value(n) || n > rest_.size()) return false;
-    s.assign(rest_.substr(0, n));
-    rest_.remove_prefix(n);
-    return true;
-  }
-  template <class T>
-  bool array(std::vector<T>& v) {
-    std::uint64_t n = 0;
-    if (!value(n) || n > rest_.size() / sizeof(T)) return false;
-    v.resize(n);
-    std::memcpy(v.data(), rest_.data(), n * sizeof(T));
-    rest_.remove_prefix(n * sizeof(T));
-    return true;
-  }
-  /// Reads an array and compares it with `expected`, without a copy.
-  template <class T>
-  bool same_array(std::span<const T> expected) {
-    std::uint64_t n = 0;
-    if (!value(n) || n != expected.size() || n > rest_.size() / sizeof(T)) return false;
-    const std::size_t size = n * sizeof(T);
-    if (size > 0 && std::memcmp(rest_.data(), expected.data(), size) != 0) return false;
-    rest_.remove_prefix(size);
-    return true;
-  }
-  bool done() const { return rest_.empty(); }
-
- private:
-  std::string_view rest_;
-};
-
 std::filesystem::path entry_path(const std::filesystem::path& dir, const std::string& key) {
   Fnv1a h;
   h.add(key);
@@ -164,7 +95,8 @@ std::optional<std::string> checked_payload(const std::filesystem::path& file) {
 }
 
 /// Appends the checksum and writes the entry atomically; failures are ignored.
-void store_entry(const std::filesystem::path& dir, const std::filesystem::path& file, Writer& out) {
+void store_entry(const std::filesystem::path& dir, const std::filesystem::path& file,
+                 ByteWriter& out) {
   out.value(checksum(out.bytes()));
   try {
     std::error_code error;
@@ -283,60 +215,22 @@ std::optional<Mesh> read_cached_mesh(const std::filesystem::path& dir, const std
   const std::optional<std::string> payload = checked_payload(entry_path(dir, key));
   if (!payload) return std::nullopt;
 
-  Reader in(*payload);
+  ByteReader in(*payload);
   std::string magic, entry_key;
   std::uint32_t endian = 0;
   Mesh mesh;
-  std::uint64_t bodies = 0, curves = 0, points = 0;
   if (!in.text(magic) || magic != kMagic || !in.value(endian) || endian != 0x01020304u ||
-      !in.text(entry_key) || entry_key != key || !in.array(mesh.xy) || !in.array(mesh.triangles) ||
-      !in.array(mesh.element_surface) || !in.value(bodies))
-    return std::nullopt;
-  mesh.surface_body.resize(bodies);
-  for (std::string& body : mesh.surface_body)
-    if (!in.text(body)) return std::nullopt;
-  if (!in.value(curves)) return std::nullopt;
-  for (std::uint64_t i = 0; i < curves; ++i) {
-    std::string name;
-    std::vector<std::int32_t> flat;
-    if (!in.text(name) || !in.array(flat) || flat.size() % 2 != 0) return std::nullopt;
-    auto& edges = mesh.curves[name];
-    for (std::size_t k = 0; k < flat.size(); k += 2) edges.push_back({flat[k], flat[k + 1]});
-  }
-  if (!in.value(points)) return std::nullopt;
-  for (std::uint64_t i = 0; i < points; ++i) {
-    std::string name;
-    if (!in.text(name) || !in.array(mesh.points[name])) return std::nullopt;
-  }
-  if (!in.done() || mesh.xy.size() % 2 != 0 || mesh.triangles.size() % 3 != 0 ||
-      mesh.element_surface.size() != mesh.num_elements())
+      !in.text(entry_key) || entry_key != key || !read_mesh(in, mesh) || !in.done())
     return std::nullopt;
   return mesh;
 }
 
 void write_cached_mesh(const std::filesystem::path& dir, const std::string& key, const Mesh& mesh) {
-  Writer out;
+  ByteWriter out;
   out.text(kMagic);
   out.value<std::uint32_t>(0x01020304u);
   out.text(key);
-  out.array(mesh.xy);
-  out.array(mesh.triangles);
-  out.array(mesh.element_surface);
-  out.value<std::uint64_t>(mesh.surface_body.size());
-  for (const std::string& body : mesh.surface_body) out.text(body);
-  out.value<std::uint64_t>(mesh.curves.size());
-  for (const auto& [name, edges] : mesh.curves) {
-    std::vector<std::int32_t> flat;
-    flat.reserve(2 * edges.size());
-    for (const auto& [a, b] : edges) flat.insert(flat.end(), {a, b});
-    out.text(name);
-    out.array(flat);
-  }
-  out.value<std::uint64_t>(mesh.points.size());
-  for (const auto& [name, nodes] : mesh.points) {
-    out.text(name);
-    out.array(nodes);
-  }
+  write_mesh(out, mesh);
   store_entry(dir, entry_path(dir, key), out);
 }
 
@@ -359,7 +253,7 @@ std::optional<CachedOrdering> read_cached_ordering(const MeshCacheSlot& slot,
   const std::optional<std::string> payload =
       checked_payload(cached_ordering_path(slot, ordering_key, col_ptr, row_idx));
   if (!payload) return std::nullopt;
-  Reader in(*payload);
+  ByteReader in(*payload);
   std::string magic, entry_key;
   std::uint32_t endian = 0;
   CachedOrdering ordering;
@@ -382,7 +276,7 @@ std::optional<CachedOrdering> read_cached_ordering(const MeshCacheSlot& slot,
 void write_cached_ordering(const MeshCacheSlot& slot, const std::string& ordering_key,
                            std::span<const std::int32_t> col_ptr,
                            std::span<const std::int32_t> row_idx, const CachedOrdering& ordering) {
-  Writer out;
+  ByteWriter out;
   out.text(kOrderingMagic);
   out.value<std::uint32_t>(0x01020304u);
   out.text(ordering_entry_key(slot, ordering_key));

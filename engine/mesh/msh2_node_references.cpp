@@ -1,21 +1,30 @@
 #include "engine/mesh/msh2_node_references.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
-#include <iterator>
 #include <memory>
 #include <string>
 #include <unordered_set>
+
+#include "engine/mesh/msh_element_types.hpp"
+#include "engine/scene/mesh_budget.hpp"
 
 namespace rockdd {
 
 namespace {
 
-/// Nodes of a format-2 element type (Gmsh's MElement::getInfoMSH for types 1-31), 0 if unknown.
-int nodes_of_type(int type) {
-  static constexpr int kNodes[] = {0, 2,  3,  4,  4, 8,  6,  5,  3,  6,  9, 10, 27, 18, 14, 1,
-                                   8, 20, 15, 13, 9, 10, 12, 15, 15, 21, 4, 5,  6,  20, 35, 56};
-  return type > 0 && type < static_cast<int>(std::size(kNodes)) ? kNodes[type] : 0;
+/// The memory budget of a file of `nodes` and `elements`, from its counts, before Gmsh reads
+/// it: every element counts as a triangle, and a node as two (a triangulation has about twice
+/// as many triangles as nodes), as in msh4_contents.
+void check_counts(double nodes, double elements, const std::filesystem::path& file,
+                  const MeshSource& source) {
+  const std::string problem =
+      mesh_budget_problem(std::max(2.0 * nodes, elements), available_memory_bytes());
+  if (!problem.empty())
+    source.fail(problem + ", counting " + count_text(elements) +
+                " elements of any kind and 2 triangles a node for " + count_text(nodes) +
+                " nodes (in " + file.string() + ")");
 }
 
 }  // namespace
@@ -69,6 +78,7 @@ void check_msh2_node_references(const std::filesystem::path& file, const MeshSou
       int count = 0;
       if (std::fscanf(fp.get(), "%d", &count) != 1 || count < 0)
         unreadable("a node count after $Nodes");
+      check_counts(count, 0, file, source);
       for (int n = 0; n < count; ++n) {
         int tag = 0;
         double x, y, z;
@@ -81,6 +91,7 @@ void check_msh2_node_references(const std::filesystem::path& file, const MeshSou
       int count = 0;
       if (std::fscanf(fp.get(), "%d", &count) != 1 || count < 0)
         unreadable("an element count after $Elements");
+      check_counts(static_cast<double>(nodes.size()), count, file, source);
       for (int e = 0; e < count; ++e) {
         int tag = 0, type = 0, tags = 0, value = 0;
         if (std::fscanf(fp.get(), "%d %d %d", &tag, &type, &tags) != 3 || tags < 0)
@@ -100,7 +111,7 @@ void check_msh2_node_references(const std::filesystem::path& file, const MeshSou
                 std::to_string(tag) + " with " + std::to_string(tags) + " tags (in " +
                 file.string() + ")");
         }
-        const int corners = nodes_of_type(type);
+        const int corners = msh_nodes_of_type(type);
         if (corners == 0)
           unreadable("element types 1 to 31 of format 2, got type " + std::to_string(type) +
                      " for element " + std::to_string(tag));

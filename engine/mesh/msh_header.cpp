@@ -43,12 +43,20 @@ void check_msh_header(const std::filesystem::path& file, const MeshSource& sourc
   double version = 0.0;
   int file_type = -1, data_size = 0;
   fields >> version >> file_type >> data_size;
-  const bool known_version = (version >= 2.0 && version < 3.0) || (version >= 4.0 && version < 5.0);
-  if (!fields || !known_version || (file_type != 0 && file_type != 1) || data_size != 8)
+  const bool format_2 = version >= 2.0 && version < 3.0, format_41 = version == 4.1;
+  if (!fields || !(format_2 || format_41) || (file_type != 0 && file_type != 1) || data_size != 8)
     source.fail(
         "expected the .msh header \"<version> <file-type> <data-size>\" with version 2.x or "
-        "4.x, file-type 0 (ASCII) or 1 (binary) and data-size 8, got " +
+        "4.1, file-type 0 (ASCII) or 1 (binary) and data-size 8, got " +
         printable(second) + in_file);
+  // The contents are checked before Gmsh reads them (msh2_node_references, msh4_contents);
+  // the format-2 check reads ASCII files only.
+  if (format_2 && file_type == 1)
+    source.fail(
+        "expected an ASCII format-2 .msh (file-type 0) or a format-4.1 one, ASCII or binary, "
+        "got a binary format-2 file, which rockdd does not check before Gmsh reads it: save the "
+        "mesh as ASCII or as format 4.1 (Gmsh: Mesh.MshFileVersion = 4.1)" +
+        in_file);
 }
 
 }  // namespace rockdd

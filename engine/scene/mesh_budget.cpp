@@ -11,16 +11,6 @@
 
 namespace rockdd {
 
-namespace {
-
-/// A count for messages: "20000000000" up to 1e15, then "2e+20".
-std::string count_text(double count) {
-  return count < 1e15 ? std::to_string(static_cast<long long>(std::ceil(count)))
-                      : format_number(count);
-}
-
-}  // namespace
-
 double triangles_over_area(double area, double element_size) {
   return area / (std::sqrt(3.0) / 4.0 * element_size * element_size);
 }
@@ -51,6 +41,11 @@ double available_memory_bytes() {
   }
   return static_cast<double>(sysconf(_SC_AVPHYS_PAGES)) *
          static_cast<double>(sysconf(_SC_PAGESIZE));
+}
+
+std::string count_text(double count) {
+  return count < 1e15 ? std::to_string(static_cast<long long>(std::ceil(count)))
+                      : format_number(count);
 }
 
 std::string mesh_budget_problem(double triangles, double available, bool at_least) {

@@ -33,6 +33,9 @@ std::optional<double> estimated_triangles(const MeshSpec& mesh);
 /// physical pages (sysconf).
 double available_memory_bytes();
 
+/// A count for messages: "20000000000" up to 1e15, then "2e+20".
+std::string count_text(double count);
+
 /// The expectation a mesh of `triangles` (estimated, or a lower bound when `at_least`) fails
 /// with `available` bytes left ("expected ..., got ..."), or "" when it fits.
 std::string mesh_budget_problem(double triangles, double available, bool at_least = false);

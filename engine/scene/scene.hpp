@@ -21,11 +21,19 @@ enum class Integrator { dda, newmark };
 
 using Vec2 = std::array<double, 2>;
 
+/// Steps a scene may ask for unless time.max_steps raises it. A step costs about 0.1 ms
+/// whatever the mesh (data/verification/free_fall.toml, 8 elements: 10 steps in 1 ms; the
+/// block resting on its base of docs/stability.md: 1e5 steps in 14 s), so 1e7 steps take a
+/// quarter of an hour at the least and hours on a real mesh: a scene beyond it is a slip of an
+/// exponent far more often than a plan, and one that means it says so with time.max_steps.
+inline constexpr std::int64_t kDefaultMaxSteps = 10'000'000;
+
 /// [time]: first dt, end time or step count, and step control.
 struct TimeSpec {
   double dt = 1.0;                              // s (1 in a static scene without [time])
   std::optional<double> end;                    // s; exactly one of end / steps is set
   std::optional<int> steps;                     // number of steps
+  std::int64_t max_steps = kDefaultMaxSteps;    // the step budget (step_budget.hpp)
   double dt_min = 0.0;                          // s; 0 = dt * 1e-6 (default chosen)
   std::optional<double> max_step_displacement;  // m
   double dt_max = 0.0;                          // s; default = dt

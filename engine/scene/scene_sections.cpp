@@ -4,6 +4,7 @@
 #include <climits>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,7 @@
 #include "engine/scene/geometry_limits.hpp"
 #include "engine/scene/mesh_algorithm.hpp"
 #include "engine/scene/mesh_budget.hpp"
+#include "engine/scene/step_budget.hpp"
 
 namespace rockdd {
 namespace {
@@ -211,6 +213,23 @@ void check_precision(const TableReader& table, const MeshSpec& mesh) {
                       " m from it with elements of " + format_number(element) + " m");
 }
 
+/// Refuses a run longer than time.max_steps (default kDefaultMaxSteps), naming the keys that
+/// make its length and the one that raises the budget.
+void check_step_budget(TableReader& table, TimeSpec& time) {
+  if (auto most = table.integer("max_steps", 1, std::numeric_limits<std::int64_t>::max()))
+    time.max_steps = *most;
+  const double steps = scene_steps(time);
+  if (steps <= static_cast<double>(time.max_steps)) return;
+  const std::string budget = "at most time.max_steps = " + std::to_string(time.max_steps) +
+                             (table.has("max_steps") ? "" : " (the default)") + " steps";
+  if (time.steps)
+    table.fail("steps", "expected " + budget + ", got " + std::to_string(*time.steps) +
+                            ": raise time.max_steps to run more");
+  table.fail("dt", "expected " + budget + ", got time.end / time.dt = " + format_number(*time.end) +
+                       " / " + format_number(time.dt) + " = " + count_text(steps) +
+                       " steps: lengthen time.dt, shorten time.end or raise time.max_steps");
+}
+
 }  // namespace
 
 Scene read_scene_header(TableReader& root) {
@@ -229,7 +248,7 @@ Scene read_scene_header(TableReader& root) {
   scene.plane = table->choice_or("plane", {"stress", "strain"}, "stress") == "strain"
                     ? PlaneKind::strain
                     : PlaneKind::stress;
-  scene.thickness = table->number_or("thickness", 1.0, above(0));
+  scene.thickness = table->number_or("thickness", 1.0, length_range());
   if (auto gravity = table->vec2("gravity")) {
     scene.gravity = *gravity;
   } else {
@@ -249,8 +268,8 @@ TimeSpec read_time(TableReader& root, Analysis analysis) {
                          ", got nothing (only a \"static\" scene may leave it out)");
   }
   TableReader table = optional_table(root, "time");
-  table.allow_only({"dt", "end", "steps", "dt_min", "max_step_displacement", "dt_max", "integrator",
-                    "stop_at_softening", "softening_probe"});
+  table.allow_only({"dt", "end", "steps", "max_steps", "dt_min", "max_step_displacement", "dt_max",
+                    "integrator", "stop_at_softening", "softening_probe"});
   TimeSpec time;
   time.dt =
       is_static ? table.number_or("dt", 1.0, above(0)) : table.required_number("dt", above(0));
@@ -273,6 +292,7 @@ TimeSpec read_time(TableReader& root, Analysis analysis) {
     table.fail("dt_min", "expected a number in (0, time.dt = " + dt + "], got " +
                              describe(*table.find("dt_min")));
   }
+  check_step_budget(table, time);
   time.max_step_displacement = table.number("max_step_displacement", above(0));
   time.dt_max = table.number_or("dt_max", time.dt, above(0));
   if (time.dt_max < time.dt) {

@@ -186,12 +186,14 @@ std::optional<std::int64_t> TableReader::integer(std::string_view key, std::int6
                                                  std::int64_t hi) const {
   const toml::node* node = find(key);
   if (!node) return std::nullopt;
-  // Upper bounds at or above int32 are storage limits, not part of the schema: not shown.
-  const bool show_hi = hi < std::numeric_limits<std::int32_t>::max();
+  const auto* value = node->as_integer();
+  // Upper bounds at or above int32 are storage limits, not part of the schema: shown only to
+  // a value beyond them.
+  const bool show_hi =
+      hi < std::numeric_limits<std::int32_t>::max() || (value != nullptr && value->get() > hi);
   const std::string want = "expected an integer " +
                            (show_hi ? "in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]"
                                     : ">= " + std::to_string(lo));
-  const auto* value = node->as_integer();
   if (!value || value->get() < lo || value->get() > hi)
     fail(key, want + ", got " + describe(*node));
   return value->get();

@@ -13,6 +13,11 @@ class StepControl {
  public:
   explicit StepControl(const TimeSpec& time);
   double dt() const { return dt_; }
+  /// The next step's length with `remaining` s left to the end: dt, or all that is left when
+  /// it is less, or when a step of dt would leave less than dt_min, which would make a last
+  /// step shorter than dt_min (end = 1, dt = 1e-5 once took a last step of 1.9e-12 s): that
+  /// remainder is merged into this step, at most dt_min longer than dt.
+  double step_to(double remaining) const { return remaining - dt_ < dt_min_ ? remaining : dt_; }
   /// Halves dt after a failed attempt; throws RunFailure (with `why`) when dt < dt_min.
   void reject(long step, const std::string& why);
   /// Records a committed step; grows dt after 10 easy steps in a row.

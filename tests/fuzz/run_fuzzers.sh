@@ -3,7 +3,7 @@
 #   run_fuzzers.sh build SOURCE_DIR FUZZ_BUILD_DIR
 #       configures and builds FUZZ_BUILD_DIR with clang++-14 and -DROCKDD_FUZZ=ON
 #   run_fuzzers.sh run SOURCE_DIR FUZZ_BUILD_DIR HARNESS SECONDS
-#       runs HARNESS (scene_reader, overrides, msh) for SECONDS on a fresh corpus seeded
+#       runs HARNESS (scene_reader, overrides, msh, geo) for SECONDS on a fresh corpus seeded
 #       from data/, tests/scenes/ and tests/meshes/; a finding fails with its input saved
 #       in FUZZ_BUILD_DIR/findings/HARNESS/.
 # Exits 77 (CTest's SKIP_RETURN_CODE) when clang or libFuzzer's runtime is missing: the GCC
@@ -45,6 +45,13 @@ seed_corpus() {
       ;;
     overrides) cp "$source_dir"/tests/fuzz/seeds/overrides/* "$corpus"/ ;;
     msh) cp "$source_dir"/tests/meshes/*.msh "$corpus"/ ;;
+    geo)
+      # Not size_field_inside.geo: its every mutant runs to the meshing time limit (3 s), and
+      # the limits are tested in tests/test_mesh.cpp.
+      cp "$source_dir"/data/*.geo "$source_dir"/data/verification/*.geo "$corpus"/
+      find "$source_dir"/tests/meshes -name '*.geo' ! -name size_field_inside.geo \
+        -exec cp {} "$corpus"/ \;
+      ;;
     *)
       echo "fuzz: unknown harness $harness" >&2
       exit 2
@@ -89,6 +96,10 @@ case $mode in
       # world for a leak scan after each input: 18 inputs/s instead of about 1,000. The
       # engine's mesh code holds memory only in containers.
       options+=(-detect_leaks=0)
+    elif [ "$harness" = geo ]; then
+      # Gmsh runs in a meshing process per input, and its limits (3 s, 1 GB: fuzz_geo.cpp)
+      # are what is fuzzed; -timeout stays above them. Leaks: as for msh.
+      options+=(-detect_leaks=0 -dict="$source_dir/tests/fuzz/geo.dict")
     else
       options+=(-dict="$source_dir/tests/fuzz/scene.dict")
     fi
