@@ -16,13 +16,14 @@ RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
     : dir_(dir), fields_(scene.output.fields), columns_(probe_columns), write_frames_(frames) {
   // Frames and profiles of an earlier run in the same folder would mix with this run's (a
   // longer earlier run leaves frames past this one's end): they are removed first.
-  for (const char* folder : {"frames", "profiles"}) {
+  for (const char* folder : {"frames", "profiles", "events"}) {
     std::error_code ignored;
     if (std::filesystem::is_directory(dir_ / folder, ignored))
       for (const auto& entry : std::filesystem::directory_iterator(dir_ / folder, ignored)) {
         const std::string name = entry.path().filename().string();
         const bool ours = (name.starts_with("frame_") && name.ends_with(".vtu")) ||
-                          (std::string(folder) == "profiles" && name.ends_with(".csv"));
+                          (std::string(folder) == "profiles" && name.ends_with(".csv")) ||
+                          (std::string(folder) == "events" && name.ends_with(".vtu"));
         if (ours) std::filesystem::remove(entry.path(), ignored);
       }
   }
@@ -35,6 +36,10 @@ RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
     std::filesystem::remove(dir_ / "frames.pvd", ignored);
     std::filesystem::remove(dir_ / "frames", ignored);
     std::filesystem::create_directories(dir_);
+  }
+  {
+    std::error_code ignored;
+    std::filesystem::remove(dir_ / "events", ignored);  // only if empty: events come when due
   }
   if (line_probes) std::filesystem::create_directories(dir_ / "profiles");
   history_ = std::make_unique<AtomicFile>(dir_ / "history.csv");
@@ -64,6 +69,22 @@ void RunOutputs::history_row(long step, double time, double dt,
 
 void RunOutputs::frame(const Model& model, long step, double time) {
   if (!write_frames_) return;
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%05ld.vtu", step);
+  write_fields(model, dir_ / "frames" / name);
+  frames_.emplace_back(time, std::string("frames/") + name);
+  write_pvd(dir_ / "frames.pvd", frames_);
+}
+
+std::string RunOutputs::event_frame(const Model& model, const std::string& event) {
+  if (!write_frames_) return {};
+  std::filesystem::create_directories(dir_ / "events");
+  const std::string path = "events/" + event + ".vtu";
+  write_fields(model, dir_ / path);
+  return path;
+}
+
+void RunOutputs::write_fields(const Model& model, const std::filesystem::path& file) const {
   const auto num_nodes = static_cast<std::size_t>(model.num_nodes());
   const auto num_elements = static_cast<std::size_t>(model.num_elements());
   std::vector<double> points(2 * num_nodes);
@@ -103,11 +124,7 @@ void RunOutputs::frame(const Model& model, long step, double time) {
   if (wants("block")) cell_data.push_back({"block", 1, {}, model.element_block});
   if (wants("material")) cell_data.push_back({"material", 1, {}, model.element_material});
 
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%05ld.vtu", step);
-  write_vtu(dir_ / "frames" / name, points, model.conn, point_data, cell_data);
-  frames_.emplace_back(time, std::string("frames/") + name);
-  write_pvd(dir_ / "frames.pvd", frames_);
+  write_vtu(file, points, model.conn, point_data, cell_data);
 }
 
 void RunOutputs::finish(const nlohmann::json& summary) {

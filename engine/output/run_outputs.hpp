@@ -42,6 +42,10 @@ class RunOutputs {
   /// Writes frames/frame_<step>.vtu with the scene's output fields, and rewrites frames.pvd
   /// (nothing when frames are off).
   void frame(const Model& model, long step, double time);
+  /// Writes events/<event>.vtu, the state after the damage pass of a run event (not part of
+  /// frames.pvd: it lies inside a step), and returns its path in the run folder; empty when
+  /// frames are off.
+  std::string event_frame(const Model& model, const std::string& event);
   /// Largest magnitude seen of each probe column.
   const std::map<std::string, double>& peaks() const { return peaks_; }
   /// Run folder.
@@ -50,6 +54,9 @@ class RunOutputs {
   void finish(const nlohmann::json& summary);
 
  private:
+  /// Writes `file` with the scene's output fields of `model`.
+  void write_fields(const Model& model, const std::filesystem::path& file) const;
+
   std::filesystem::path dir_;
   std::vector<std::string> fields_;
   std::vector<std::string> columns_;
