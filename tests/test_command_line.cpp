@@ -12,7 +12,7 @@
 #include <set>
 #include <sstream>
 
-#include "test_support.hpp"
+#include "support/test_support.hpp"
 
 namespace rockdd {
 namespace {

@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "test_support.hpp"
+#include "support/test_support.hpp"
 
 namespace rockdd {
 namespace {

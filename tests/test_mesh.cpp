@@ -21,6 +21,7 @@
 #include "engine/mesh/mesh.hpp"
 #include "engine/mesh/mesher_process.hpp"
 #include "engine/mesh/node_ordering.hpp"
+#include "support/mesh_checks.hpp"
 
 namespace rockdd {
 namespace {
@@ -47,11 +48,9 @@ MeshSpec disk(double radius, Vec2 centre, double alpha_deg, double element_size)
   return spec;
 }
 
+/// A mesh file of tests/meshes.
 MeshSpec file(MeshSpec::Kind kind, const std::string& name) {
-  MeshSpec spec;
-  spec.kind = kind;
-  spec.file = kMeshes / name;
-  return spec;
+  return test::mesh_file(kind, kMeshes / name);
 }
 
 Vec2 node(const Mesh& mesh, std::int32_t n) {
@@ -467,11 +466,7 @@ TEST(MshFile, BinaryFormat41ReadsAsItsAsciiTwin) {
   // fields, and the mesh is the same.
   const Mesh ascii = build_mesh(file(MeshSpec::Kind::msh, "square_41.msh"), kScene);
   const Mesh binary = build_mesh(file(MeshSpec::Kind::msh, "square_41_binary.msh"), kScene);
-  EXPECT_EQ(binary.xy, ascii.xy);
-  EXPECT_EQ(binary.triangles, ascii.triangles);
-  EXPECT_EQ(binary.curves, ascii.curves);
-  EXPECT_EQ(binary.points, ascii.points);
-  EXPECT_EQ(binary.surface_body, ascii.surface_body);
+  test::expect_same_mesh(binary, ascii);
 }
 
 // --- Bad input ------------------------------------------------------------------------------

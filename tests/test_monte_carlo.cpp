@@ -20,7 +20,7 @@
 #include "engine/monte_carlo/ensemble_table.hpp"
 #include "engine/monte_carlo/monte_carlo.hpp"
 #include "engine/monte_carlo/weibull_fit.hpp"
-#include "test_support.hpp"
+#include "support/test_support.hpp"
 
 namespace rockdd {
 namespace {

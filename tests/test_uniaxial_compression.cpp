@@ -9,7 +9,7 @@
 #include <cmath>
 #include <numeric>
 
-#include "test_support.hpp"
+#include "support/test_support.hpp"
 
 namespace rockdd {
 namespace {

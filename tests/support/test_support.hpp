@@ -8,7 +8,6 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -16,24 +15,9 @@
 #include "engine/engine.hpp"
 #include "engine/report/run_result.hpp"
 #include "engine/scene/scene_reader.hpp"
+#include "temp_dir.hpp"
 
 namespace rockdd::test {
-
-/// A fresh folder under the system temp dir, removed at destruction.
-class TempDir {
- public:
-  TempDir() {
-    std::random_device rd;
-    path_ = std::filesystem::temp_directory_path() /
-            ("rockdd-test-" + std::to_string(rd()) + std::to_string(rd()));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() { std::filesystem::remove_all(path_); }
-  const std::filesystem::path& path() const { return path_; }
-
- private:
-  std::filesystem::path path_;
-};
 
 /// A scene from TOML text, as if read from `dir/scene.toml` (written there too).
 inline Scene scene_from_text(const std::string& text, const std::filesystem::path& dir,
