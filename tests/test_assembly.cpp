@@ -14,7 +14,9 @@
 #include "engine/assembly/stiffness_layout.hpp"
 #include "engine/mesh/mesh.hpp"
 #include "engine/model/model.hpp"
-#include "support/scene_fixtures.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {

@@ -10,7 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "support/scene_fixtures.hpp"
+#include "support/block_on_base.hpp"
+#include "support/data_file.hpp"
+#include "support/file_text.hpp"
+#include "support/rectangle_geo.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {

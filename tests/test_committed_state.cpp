@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "engine/report/run_result.hpp"
-#include "support/scene_fixtures.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {

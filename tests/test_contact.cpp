@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "support/scene_fixtures.hpp"
+#include "support/block_on_base.hpp"
+#include "support/rectangle_geo.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
 
 namespace rockdd {
 namespace {

@@ -3,7 +3,8 @@
 
 #include <cmath>
 
-#include "support/scene_fixtures.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
 
 namespace rockdd {
 namespace {

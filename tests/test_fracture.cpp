@@ -9,7 +9,9 @@
 
 #include "engine/damage/damage_stage.hpp"
 #include "engine/damage/detachment.hpp"
-#include "support/scene_fixtures.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {

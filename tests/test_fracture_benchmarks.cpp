@@ -11,7 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "support/scene_fixtures.hpp"
+#include "support/data_file.hpp"
+#include "support/file_text.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
 
 namespace rockdd {
 namespace {

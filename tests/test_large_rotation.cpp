@@ -8,7 +8,9 @@
 
 #include "engine/time/rotation_correction.hpp"
 #include "kernels/cst.hpp"
-#include "support/scene_fixtures.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {

@@ -14,7 +14,8 @@
 
 #include "engine/mesh/mesh.hpp"
 #include "engine/mesh/mesh_cache.hpp"
-#include "support/mesh_checks.hpp"
+#include "support/mesh_file.hpp"
+#include "support/same_mesh.hpp"
 #include "support/temp_dir.hpp"
 
 namespace rockdd {

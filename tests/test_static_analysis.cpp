@@ -6,7 +6,11 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "support/scene_fixtures.hpp"
+#include "support/end_loaded_plate.hpp"
+#include "support/file_text.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {

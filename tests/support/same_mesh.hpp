@@ -1,20 +1,10 @@
 #pragma once
-// Mesh helpers shared by test_mesh and test_mesh_cache (only the mesh library behind them).
+// Comparing two meshes field by field, for the mesh tests (only the mesh library behind them).
 #include <gtest/gtest.h>
-
-#include <filesystem>
 
 #include "engine/mesh/mesh.hpp"
 
 namespace rockdd::test {
-
-/// The mesh spec of a .geo or .msh file at `path`.
-inline MeshSpec mesh_file(MeshSpec::Kind kind, const std::filesystem::path& path) {
-  MeshSpec spec;
-  spec.kind = kind;
-  spec.file = path;
-  return spec;
-}
 
 /// Expects two meshes to be the same in every field a model is built from.
 inline void expect_same_mesh(const Mesh& a, const Mesh& b) {

@@ -1,23 +1,20 @@
 #pragma once
-// Scene fixtures shared by the engine tests: the TOML tables that many scenes state alike
-// (material, fixed edge, probe, output), and the named scenes that several test files run (a
-// block on a base, the end-loaded plate). Each takes the numbers a test is about, so that the
-// test still shows them; they return TOML text for run_scene_text and scene_from_text.
+// TOML tables that many test scenes state alike ([scene], a rectangle [mesh], [[material]],
+// [[joint]], a fixed [[boundary]], [[probe]], [output]): each takes the numbers a test is about,
+// so that the test still shows them, and returns TOML text for run_scene_text and
+// scene_from_text.
 #include <array>
-#include <charconv>
 #include <initializer_list>
 #include <string>
 
-#include "test_support.hpp"
+#include "engine/common/number_format.hpp"
 
 namespace rockdd::test {
 
 /// A TOML float that reads back as exactly `value` ("2600.0", "1e+10"): a float key stays a
 /// float, never an integer, and no digit is lost.
 inline std::string toml_number(double value) {
-  char buffer[32];
-  const std::to_chars_result result = std::to_chars(buffer, buffer + sizeof buffer, value);
-  std::string text(buffer, result.ptr);
+  std::string text = format_number(value);
   if (text.find_first_of(".eni") == std::string::npos) text += ".0";
   return text;
 }
@@ -91,68 +88,5 @@ inline std::string probe_body(const std::string& name, const std::string& body,
 inline std::string no_frames(const std::string& dir = "") {
   return "[output]\n" + (dir.empty() ? "" : "dir = \"" + dir + "\"\n") + "every = 0\n";
 }
-
-// --- A block on a base --------------------------------------------------------------------------
-
-/// An axis-aligned rectangle [x0, x1] x [y0, y1] (m) meshed at `element_size` (m).
-struct Box {
-  double x0, y0, x1, y1, element_size;
-};
-
-/// Gmsh text of a block above or on a base, each meshed on its own (two blocks): surface 1
-/// is body "base", surface 11 body "block", and the base's bottom edge is "base_bottom".
-inline std::string block_on_base_geo(const Box& base, const Box& block) {
-  return rectangle_geo(0, base.x0, base.y0, base.x1, base.y1, base.element_size) +
-         rectangle_geo(10, block.x0, block.y0, block.x1, block.y1, block.element_size) +
-         "Physical Surface(\"base\") = {1};\nPhysical Surface(\"block\") = {11};\n"
-         "Physical Curve(\"base_bottom\") = {1};\n";
-}
-
-/// The scene of a block on a base (the bodies of block_on_base_geo, in the file `geo`) under
-/// gravity g = 10 m/s^2 down: one joint between base and block, "base_bottom" fixed. What
-/// differs between the tests is named here; `more` holds their [[initial]] and [[probe]] tables.
-struct BlockOnBaseScene {
-  std::string name = "block-on-base";
-  std::string analysis = "dynamic";
-  std::string plane = "";                 // "" leaves it out (plane stress)
-  std::string time = "";                  // the [time] table's lines
-  std::string geo = "block_on_base.geo";  // the Gmsh file beside the scene
-  std::string materials = material("*", 2600.0, 10e9, 0.25);
-  double friction_angle = 0.0;  // of the joint, degrees
-  std::string more = "";        // [[initial]] and [[probe]] tables
-  std::string output = no_frames();
-
-  /// The scene as TOML text.
-  std::string toml() const {
-    return scene_table(
-               name, analysis,
-               (plane.empty() ? "" : "plane = \"" + plane + "\"\n") + "gravity = [0.0, -10.0]\n") +
-           "[time]\n" + time + "\n[mesh]\ngeo = \"" + geo + "\"\n" + materials +
-           joint("base", "block", friction_angle) + fixed("base_bottom") + more + output;
-  }
-};
-
-// --- The end-loaded plate -----------------------------------------------------------------------
-
-/// A 2 m x 1 m plate, 0.5 m thick, meshed unstructured at 0.13 m (E = 40 GPa, 2500 kg/m^3),
-/// static: left edge on rollers (x fixed), bottom-left corner pinned, and its right end
-/// `loading`, by default pulled with a total force F = 1e6 N: sigma_xx = F / (h t) = 2 MPa.
-struct EndLoadedPlate {
-  std::string name = "uniaxial";
-  std::string plane = "stress";  // or "strain"
-  double poisson = 0.25;
-  static constexpr double young = 40e9, force = 1e6, length = 2.0, height = 1.0, thickness = 0.5;
-
-  std::string loading = "[[load]]\non = \"right\"\nforce = [" + toml_number(force) + ", 0.0]\n";
-  std::string probes = "";  // [[probe]] tables
-
-  /// The scene as TOML text.
-  std::string toml() const {
-    return scene_table(name, "static",
-                       "plane = \"" + plane + "\"\nthickness = " + toml_number(thickness) + "\n") +
-           rectangle_mesh(length, height, 0.13) + material("body", 2500.0, young, poisson) +
-           fixed("left", {"x"}) + fixed("bottom_left") + loading + probes + no_frames();
-  }
-};
 
 }  // namespace rockdd::test
