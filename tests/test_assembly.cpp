@@ -14,29 +14,16 @@
 #include "engine/assembly/stiffness_layout.hpp"
 #include "engine/mesh/mesh.hpp"
 #include "engine/model/model.hpp"
-#include "test_support.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
 
-const char* kRectangle = R"(
-[scene]
-name = "assembly"
-analysis = "static"
-plane = "stress"
-[mesh]
-shape = "rectangle"
-size = [2.0, 1.0]
-element_size = 0.2
-[[material]]
-body = "*"
-density = 2500.0
-young = 30e9
-poisson = 0.25
-[[boundary]]
-on = "left"
-fix = ["x", "y"]
-)";
+const std::string kRectangle = test::scene_table("assembly", "static", "plane = \"stress\"\n") +
+                               test::rectangle_mesh(2.0, 1.0, 0.2) +
+                               test::material("*", 2500.0, 30e9, 0.25) + test::fixed("left");
 
 struct Assembled {
   Model model;
@@ -255,7 +242,7 @@ TEST(Assembly, InternalForceEqualsStiffnessTimesDisplacement) {
 
 TEST(Assembly, BitwiseIdenticalForOneAndTwoThreads) {
   std::vector<double> one, two, f_one, f_two;
-  const std::string fine = std::string(kRectangle) + "\n";
+  const std::string fine = kRectangle + "\n";
   auto run = [&](int threads, std::vector<double>& values, std::vector<double>& f) {
     tbb::global_control limit(tbb::global_control::max_allowed_parallelism, threads);
     test::TempDir dir;

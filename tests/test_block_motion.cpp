@@ -10,7 +10,13 @@
 #include <string>
 #include <vector>
 
-#include "test_support.hpp"
+#include "support/block_on_base.hpp"
+#include "support/data_file.hpp"
+#include "support/file_text.hpp"
+#include "support/rectangle_geo.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
@@ -32,20 +38,6 @@ std::size_t row_at(const History& h, double t) {
                                   time.begin());
 }
 
-/// Runs a scene file (with overrides) into `out`; the result and its history.csv.
-test::SceneRun run_file(const std::filesystem::path& file,
-                        const std::vector<std::string>& overrides, const std::filesystem::path& out,
-                        int threads = 0) {
-  const Scene scene = load_scene(file, overrides);
-  Simulation sim(scene, build_scene_model(scene));
-  RunOptions options;
-  options.out_root = out;
-  options.threads = threads;
-  test::SceneRun run{{}, sim.run(options), {}, {}};
-  run.history = test::read_csv(out / scene.name / "history.csv");
-  return run;
-}
-
 // ---------------------------------------------------------------------------------------
 // 1. Free fall
 
@@ -54,40 +46,15 @@ TEST(BlockMotion, FreeFall) {
   // covers the pair, so the contact stage runs but never finds a contact in 0.5 s: the block
   // falls 1.25 m). Closed form u_y = -1/2 g t^2 = -1.25 m at t = 0.5 s, within 0.5 %
   // (DDA's constant-acceleration step integrates it exactly; measured to round-off).
-  const std::string geo = test::rectangle_geo(0, -1.0, -1.0, 1.0, 0.0, 1.0) +
-                          test::rectangle_geo(10, 0.0, 5.0, 0.1, 5.1, 0.1) +
-                          "Physical Surface(\"base\") = {1};\nPhysical Surface(\"block\") = "
-                          "{11};\nPhysical Curve(\"base_bottom\") = {1};\n";
-  const std::string scene = R"(
-[scene]
-name = "free-fall"
-analysis = "dynamic"
-gravity = [0.0, -10.0]
-[time]
-dt = 0.01
-end = 0.5
-integrator = "dda"
-[mesh]
-geo = "free_fall.geo"
-[[material]]
-body = "*"
-density = 2600.0
-young = 10e9
-poisson = 0.25
-[[joint]]
-between = ["base", "block"]
-friction_angle = 0.0
-[[boundary]]
-on = "base_bottom"
-fix = ["x", "y"]
-[[probe]]
-name = "block"
-body = "block"
-fields = ["ux", "uy", "vy"]
-[output]
-every = 0
-)";
-  const auto run = test::run_scene_text(scene, {}, 0, {{"free_fall.geo", geo}});
+  const std::string geo =
+      test::block_on_base_geo({-1.0, -1.0, 1.0, 0.0, 1.0}, {0.0, 5.0, 0.1, 5.1, 0.1});
+  const test::BlockOnBaseScene scene{
+      .name = "free-fall",
+      .time = "dt = 0.01\nend = 0.5\nintegrator = \"dda\"",
+      .geo = "free_fall.geo",
+      .friction_angle = 0.0,
+      .more = test::probe_body("block", "block", {"ux", "uy", "vy"})};
+  const auto run = test::run_scene_text(scene.toml(), {}, 0, {{"free_fall.geo", geo}});
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   const History& h = run.history;
   const double g = 10.0, t = h.at("time").back();
@@ -109,38 +76,13 @@ std::string two_squares_geo() {
 }
 
 /// A moves at 1 m/s toward B at rest; no gravity, frictionless joint, E = 10 GPa, rho = 2600.
-constexpr const char* kHeadOnScene = R"(
-[scene]
-name = "head-on"
-analysis = "dynamic"
-[time]
-dt = 1e-6
-end = 4e-4
-integrator = "newmark"
-[mesh]
-geo = "two_squares.geo"
-[[material]]
-body = "*"
-density = 2600.0
-young = 10e9
-poisson = 0.25
-[[joint]]
-between = ["a", "b"]
-friction_angle = 0.0
-[[initial]]
-body = "a"
-velocity = [1.0, 0.0]
-[[probe]]
-name = "a"
-body = "a"
-fields = ["ux", "vx", "area"]
-[[probe]]
-name = "b"
-body = "b"
-fields = ["ux", "vx", "area"]
-[output]
-every = 0
-)";
+const std::string kHeadOnScene =
+    test::scene_table("head-on", "dynamic") +
+    "[time]\ndt = 1e-6\nend = 4e-4\nintegrator = \"newmark\"\n[mesh]\ngeo = \"two_squares.geo\"\n" +
+    test::material("*", 2600.0, 10e9, 0.25) + test::joint("a", "b", 0.0) +
+    "[[initial]]\nbody = \"a\"\nvelocity = [1.0, 0.0]\n" +
+    test::probe_body("a", "a", {"ux", "vx", "area"}) +
+    test::probe_body("b", "b", {"ux", "vx", "area"}) + test::no_frames();
 
 /// What a head-on run gives: momentum (kg m/s) per row, and the state at the end.
 struct Collision {
@@ -260,14 +202,15 @@ TEST(BlockMotion, Determinism) {
   // The sliding block (data/sliding_block.toml) to t = 0.2 s with 1 and 2 threads: the
   // history.csv files must be identical byte for byte.
   test::TempDir one, two;
-  const auto a = run_file(test::data_file("sliding_block.toml"), {"time.end=0.2"}, one.path(), 1);
-  const auto b = run_file(test::data_file("sliding_block.toml"), {"time.end=0.2"}, two.path(), 2);
+  const Scene scene = load_scene(test::data_file("sliding_block.toml"), {"time.end=0.2"});
+  const auto a = test::run_scene(scene, one.path(), 1);
+  const auto b = test::run_scene(scene, two.path(), 2);
   ASSERT_TRUE(a.result.ok) << a.result.reason;
   ASSERT_TRUE(b.result.ok) << b.result.reason;
   EXPECT_EQ(a.result.summary["threads"], 1);
   EXPECT_EQ(b.result.summary["threads"], 2);
-  const std::string first = test::read_text(one.path() / "sliding-block" / "history.csv");
-  const std::string second = test::read_text(two.path() / "sliding-block" / "history.csv");
+  const std::string first = test::read_text(one.path() / "out" / "sliding-block" / "history.csv");
+  const std::string second = test::read_text(two.path() / "out" / "sliding-block" / "history.csv");
   EXPECT_EQ(a.history.at("time").size(), 201u);
   EXPECT_FALSE(first.empty());
   EXPECT_TRUE(first == second) << "history.csv differs between 1 and 2 threads";
@@ -290,9 +233,8 @@ TEST(StiffAndExtreme, JointTenThousandTimesStifferThanTheRock) {
   // normal_stiffness = 1e4 x E = 1e14 N/m (500 x the default 20 E t) on the sliding block to
   // t = 0.5 s: the run must end ok (or fail with a reason) and never write a NaN; it does
   // run, and still follows the incline solution within 1 % (measured 4e-5).
-  test::TempDir tmp;
-  const auto run = run_file(test::data_file("sliding_block.toml"),
-                            {"time.end=0.5", "joint.0.normal_stiffness=1e14"}, tmp.path());
+  const auto run =
+      test::run_data_scene("sliding_block.toml", {"time.end=0.5", "joint.0.normal_stiffness=1e14"});
   EXPECT_TRUE(all_finite(run.history));
   ASSERT_TRUE(run.result.ok || !run.result.reason.empty());
   EXPECT_TRUE(run.result.ok) << run.result.reason;
@@ -304,8 +246,7 @@ TEST(StiffAndExtreme, TimeStepHundredTimesTheDefault) {
   // dt = 0.1 s (100 x the scene's 1 ms) over the full 1.5 s: finite and ok (step control may
   // cut dt); the slide is a constant acceleration, so it still follows the incline solution
   // within 1 % (measured 4e-6, 15 steps).
-  test::TempDir tmp;
-  const auto run = run_file(test::data_file("sliding_block.toml"), {"time.dt=0.1"}, tmp.path());
+  const auto run = test::run_data_scene("sliding_block.toml", {"time.dt=0.1"});
   EXPECT_TRUE(all_finite(run.history));
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   EXPECT_NEAR(run.history.at("time").back(), 1.5, 1e-12);
@@ -322,47 +263,15 @@ std::string contrast_geo() {
          "Physical Curve(\"soft_bottom\") = {11};\n";
 }
 
-constexpr const char* kContrastScene = R"(
-[scene]
-name = "contrast"
-analysis = "quasi-static"
-gravity = [0.0, -10.0]
-[time]
-dt = 1.0
-steps = 10
-[mesh]
-geo = "contrast.geo"
-[[material]]
-body = "stiff"
-density = 2600.0
-young = 1e10
-poisson = 0.25
-[[material]]
-body = "soft"
-density = 2600.0
-young = 1e4
-poisson = 0.25
-[[joint]]
-between = ["stiff", "soft"]
-friction_angle = 0.0
-[[boundary]]
-on = "stiff_bottom"
-fix = ["x", "y"]
-[[probe]]
-name = "soft"
-body = "soft"
-fields = ["uy"]
-[[probe]]
-name = "soft_bottom"
-on = "soft_bottom"
-fields = ["uy"]
-[[probe]]
-name = "stiff_top"
-on = "stiff_top"
-fields = ["uy"]
-[output]
-every = 0
-)";
+/// E = 1e4 Pa on E = 1e10 Pa, frictionless, under gravity; quasi-static, 10 steps of 1 s.
+const std::string kContrastScene =
+    test::scene_table("contrast", "quasi-static", "gravity = [0.0, -10.0]\n") +
+    "[time]\ndt = 1.0\nsteps = 10\n[mesh]\ngeo = \"contrast.geo\"\n" +
+    test::material("stiff", 2600.0, 1e10, 0.25) + test::material("soft", 2600.0, 1e4, 0.25) +
+    test::joint("stiff", "soft", 0.0) + test::fixed("stiff_bottom") +
+    test::probe_body("soft", "soft", {"uy"}) +
+    test::probe_on("soft_bottom", "soft_bottom", {"uy"}) +
+    test::probe_on("stiff_top", "stiff_top", {"uy"}) + test::no_frames();
 
 TEST(StiffAndExtreme, SoftBlockOnAMillionTimesStifferBlock) {
   // E = 1e4 Pa on E = 1e10 Pa (kn = 20 x 1e10 = 2e11 N/m from the stiffer one: 2e7 x the soft
@@ -417,34 +326,11 @@ TEST(BlockMotion, ColumnOfTenBlocks) {
   std::string geo = test::rectangle_geo(0, 0.0, -L, L, 0.0, 0.05) +
                     "Physical Surface(\"b0\") = {1};\nPhysical Curve(\"base_bottom\") = {1};\n"
                     "Physical Curve(\"b0_top\") = {3};\n";
-  std::string scene = R"(
-[scene]
-name = "column"
-analysis = "dynamic"
-gravity = [0.0, -10.0]
-[time]
-dt = 1e-3
-end = 0.2
-[mesh]
-geo = "column.geo"
-[[material]]
-body = "*"
-density = 2600.0
-young = 10e9
-poisson = 0.25
-[[joint]]
-between = "*"
-friction_angle = 0.0
-[[boundary]]
-on = "base_bottom"
-fix = ["x", "y"]
-[[probe]]
-name = "b0_top"
-on = "b0_top"
-fields = ["uy"]
-[output]
-every = 0
-)";
+  std::string scene = test::scene_table("column", "dynamic", "gravity = [0.0, -10.0]\n") +
+                      "[time]\ndt = 1e-3\nend = 0.2\n[mesh]\ngeo = \"column.geo\"\n" +
+                      test::material("*", 2600.0, E, 0.25) +
+                      "[[joint]]\nbetween = \"*\"\nfriction_angle = 0.0\n" +
+                      test::fixed("base_bottom") + test::probe_on("b0_top", "b0_top", {"uy"});
   for (int j = 1; j <= kBlocks; ++j) {
     const std::string b = "b" + std::to_string(j);
     const int id = 10 * j;
@@ -452,12 +338,11 @@ every = 0
     geo += "Physical Surface(\"" + b + "\") = {" + std::to_string(id + 1) + "};\n";
     geo += "Physical Curve(\"" + b + "_bottom\") = {" + std::to_string(id + 1) + "};\n";
     geo += "Physical Curve(\"" + b + "_top\") = {" + std::to_string(id + 3) + "};\n";
-    scene += "[[probe]]\nname = \"" + b + "\"\nbody = \"" + b +
-             "\"\nfields = [\"ux\", \"uy\", \"rotation\"]\n";
-    scene +=
-        "[[probe]]\nname = \"" + b + "_bottom\"\non = \"" + b + "_bottom\"\nfields = [\"uy\"]\n";
-    scene += "[[probe]]\nname = \"" + b + "_top\"\non = \"" + b + "_top\"\nfields = [\"uy\"]\n";
+    scene += test::probe_body(b, b, {"ux", "uy", "rotation"}) +
+             test::probe_on(b + "_bottom", b + "_bottom", {"uy"}) +
+             test::probe_on(b + "_top", b + "_top", {"uy"});
   }
+  scene += test::no_frames();
   const auto run = test::run_scene_text(scene, {}, 0, {{"column.geo", geo}});
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   EXPECT_EQ(run.result.summary["blocks"], kBlocks + 1);
@@ -500,41 +385,16 @@ every = 0
 /// top is one edge: only the block's two bottom corners touch, so the contact is a spring
 /// k = 2 kn. Returns the restitution: rebound speed over impact speed.
 double restitution(double dt, double kn) {
-  const std::string geo = test::rectangle_geo(0, -0.5, -0.2, 0.5, 0.0, 1.0) +
-                          test::rectangle_geo(10, -0.05, 0.01, 0.05, 0.11, 0.1) +
-                          "Physical Surface(\"base\") = {1};\nPhysical Surface(\"block\") = "
-                          "{11};\nPhysical Curve(\"base_bottom\") = {1};\n";
-  const std::string scene = R"(
-[scene]
-name = "drop"
-analysis = "dynamic"
-gravity = [0.0, -10.0]
-[time]
-dt = 1e-4
-end = 0.055
-integrator = "dda"
-[mesh]
-geo = "drop.geo"
-[[material]]
-body = "*"
-density = 2600.0
-young = 10e9
-poisson = 0.25
-[[joint]]
-between = ["base", "block"]
-friction_angle = 0.0
-[[boundary]]
-on = "base_bottom"
-fix = ["x", "y"]
-[[probe]]
-name = "block"
-body = "block"
-fields = ["vy"]
-[output]
-every = 0
-)";
+  const std::string geo =
+      test::block_on_base_geo({-0.5, -0.2, 0.5, 0.0, 1.0}, {-0.05, 0.01, 0.05, 0.11, 0.1});
+  const test::BlockOnBaseScene scene{.name = "drop",
+                                     .time = "dt = 1e-4\nend = 0.055\nintegrator = \"dda\"",
+                                     .geo = "drop.geo",
+                                     .friction_angle = 0.0,
+                                     .more = test::probe_body("block", "block", {"vy"})};
   const auto run = test::run_scene_text(
-      scene, {"time.dt=" + std::to_string(dt), "joint.0.normal_stiffness=" + std::to_string(kn)}, 0,
+      scene.toml(),
+      {"time.dt=" + std::to_string(dt), "joint.0.normal_stiffness=" + std::to_string(kn)}, 0,
       {{"drop.geo", geo}});
   EXPECT_TRUE(run.result.ok) << run.result.reason;
   EXPECT_TRUE(all_finite(run.history));

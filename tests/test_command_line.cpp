@@ -12,7 +12,9 @@
 #include <set>
 #include <sstream>
 
-#include "test_support.hpp"
+#include "support/command_line.hpp"
+#include "support/file_text.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {

@@ -5,7 +5,9 @@
 #include <vector>
 
 #include "engine/report/run_result.hpp"
-#include "test_support.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
@@ -14,33 +16,12 @@ namespace {
 // (0.6 mm), so the step is rejected and redone at dt / 2, and dt grows back later and is cut
 // again: several redone steps, each after a trial that stressed the block further than the
 // committed state.
-constexpr const char* kPressedSquare = R"(
-[scene]
-name = "pressed-square"
-analysis = "quasi-static"
-[time]
-dt = 1.0
-end = 4.0
-max_step_displacement = 6e-4
-[mesh]
-shape = "rectangle"
-size = [1.0, 1.0]
-divisions = [4, 4]
-[[material]]
-body = "body"
-density = 2000.0
-young = 1e9
-poisson = 0.2
-[[boundary]]
-on = "bottom"
-fix = ["y"]
-[[boundary]]
-on = "bottom_left"
-fix = ["x"]
-[[boundary]]
-on = "top"
-velocity_y = -1e-3
-)";
+const std::string kPressedSquare =
+    test::scene_table("pressed-square", "quasi-static") +
+    "[time]\ndt = 1.0\nend = 4.0\nmax_step_displacement = 6e-4\n" +
+    test::rectangle_mesh(1.0, 1.0, {4, 4}) + test::material("body", 2000.0, 1e9, 0.2) +
+    test::fixed("bottom", {"y"}) + test::fixed("bottom_left", {"x"}) +
+    "[[boundary]]\non = \"top\"\nvelocity_y = -1e-3\n";
 
 TEST(CommittedState, ARedoneAttemptStartsFromTheCommittedStress) {
   // Required: as an attempt starts, the element stress (and strain) it reads, e.g. for the

@@ -9,7 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "test_support.hpp"
+#include "support/block_on_base.hpp"
+#include "support/rectangle_geo.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
 
 namespace rockdd {
 namespace {
@@ -17,14 +20,10 @@ namespace {
 TEST(SlidingBlock, FrictionlessBlockFollowsTheInclinedPlaneSolution) {
   // Paper eqs. (13)-(14): u_x = 1/2 g cos(th) sin(th) t^2, u_y = -1/2 g sin(th)^2 t^2
   // (downwards), th = 30 deg, g = 10, t = 1.5 s; within 1 % (the issue's tolerance).
-  test::TempDir tmp;
-  const Scene scene = load_scene(test::data_file("sliding_block.toml"));
-  Simulation sim(scene, build_scene_model(scene));
-  RunOptions options;
-  options.out_root = tmp.path();
-  const RunResult result = sim.run(options);
+  const auto run = test::run_data_scene("sliding_block.toml");
+  const RunResult& result = run.result;
   ASSERT_TRUE(result.ok) << result.reason;
-  const auto h = test::read_csv(tmp.path() / "sliding-block" / "history.csv");
+  const auto& h = run.history;
   const double th = std::numbers::pi / 6, g = 10.0, t = h.at("time").back();
   EXPECT_NEAR(t, 1.5, 1e-12);
   const double ux = 0.5 * g * std::cos(th) * std::sin(th) * t * t;
@@ -39,12 +38,7 @@ TEST(SlidingBlock, FrictionlessBlockFollowsTheInclinedPlaneSolution) {
 
 TEST(SlidingBlock, SingleBodyWithoutJointBuildsNoContactStage) {
   // No [[joint]]: no detection and no open-close iteration at all (timers.contact stays 0).
-  test::TempDir tmp;
-  const Scene scene = load_scene(test::data_file("cantilever_model_1.toml"));
-  Simulation sim(scene, build_scene_model(scene));
-  RunOptions options;
-  options.out_root = tmp.path();
-  const RunResult result = sim.run(options);
+  const RunResult result = test::run_data_scene("cantilever_model_1.toml").result;
   EXPECT_EQ(result.summary["open_close_iterations"], 0);
   EXPECT_EQ(result.summary["timers"]["contact"], 0.0);
   EXPECT_FALSE(result.summary["defaults"].contains("contact.normal_stiffness"));
@@ -53,14 +47,9 @@ TEST(SlidingBlock, SingleBodyWithoutJointBuildsNoContactStage) {
 /// Runs data/sliding_block.toml with `overrides`; history.csv by column.
 std::map<std::string, std::vector<double>> run_sliding_block(
     const std::vector<std::string>& overrides) {
-  test::TempDir tmp;
-  const Scene scene = load_scene(test::data_file("sliding_block.toml"), overrides);
-  Simulation sim(scene, build_scene_model(scene));
-  RunOptions options;
-  options.out_root = tmp.path();
-  const RunResult result = sim.run(options);
-  EXPECT_TRUE(result.ok) << result.reason;
-  return test::read_csv(tmp.path() / "sliding-block" / "history.csv");
+  const auto run = test::run_data_scene("sliding_block.toml", overrides);
+  EXPECT_TRUE(run.result.ok) << run.result.reason;
+  return run.history;
 }
 
 TEST(SlidingBlock, WithFrictionFollowsTheInclinedPlaneSolution) {
@@ -172,55 +161,23 @@ TEST(FrictionalIncline, SameSlideAtAQuarterOfTheStep) {
   EXPECT_NEAR(fine.s.back(), frictional_incline_slide(1.0), 0.01 * frictional_incline_slide(1.0));
 }
 
-/// A 1 m x 0.5 m block on a 4 m x 1 m base, meshed separately (two blocks).
-std::string block_on_base_geo() {
-  return test::rectangle_geo(0, 0.0, 0.0, 4.0, 1.0, 0.5) +
-         test::rectangle_geo(10, 0.5, 1.0, 1.5, 1.5, 0.25) +
-         "Physical Surface(\"base\") = {1};\nPhysical Surface(\"block\") = {11};\n"
-         "Physical Curve(\"base_bottom\") = {1};\n";
+/// A 1 m x 0.5 m block on a 4 m x 1 m base, meshed separately (two blocks), placed `depth`
+/// (m) into the base.
+std::string block_on_flat_base_geo(double depth = 0.0) {
+  return test::block_on_base_geo({0.0, 0.0, 4.0, 1.0, 0.5},
+                                 {0.5, 1.0 - depth, 1.5, 1.5 - depth, 0.25});
 }
 
-constexpr const char* kBlockOnBaseScene = R"(
-[scene]
-name = "block-on-base"
-analysis = "dynamic"
-plane = "stress"
-gravity = [0.0, -10.0]
-[time]
-dt = 1e-3
-end = 0.8
-[mesh]
-geo = "block_on_base.geo"
-[[material]]
-body = "*"
-density = 2600.0
-young = 10e9
-poisson = 0.25
-[[joint]]
-between = ["base", "block"]
-friction_angle = 20.0
-[[boundary]]
-on = "base_bottom"
-fix = ["x", "y"]
-[[initial]]
-body = "block"
-velocity = [2.0, 0.0]
-[[probe]]
-name = "block"
-body = "block"
-fields = ["ux", "uy", "vx", "vy", "rotation"]
-[output]
-dir = "out"
-every = 0
-)";
-
-/// The block of block_on_base_geo() placed `depth` (m) into the base.
-std::string sunk_block_geo(double depth) {
-  return test::rectangle_geo(0, 0.0, 0.0, 4.0, 1.0, 0.5) +
-         test::rectangle_geo(10, 0.5, 1.0 - depth, 1.5, 1.5 - depth, 0.25) +
-         "Physical Surface(\"base\") = {1};\nPhysical Surface(\"block\") = {11};\n"
-         "Physical Curve(\"base_bottom\") = {1};\n";
-}
+/// The block set off at 2 m/s along the base, joint friction 20 deg, dynamic for 0.8 s.
+const std::string kBlockOnBaseScene =
+    test::BlockOnBaseScene{
+        .plane = "stress",
+        .time = "dt = 1e-3\nend = 0.8",
+        .friction_angle = 20.0,
+        .more = "[[initial]]\nbody = \"block\"\nvelocity = [2.0, 0.0]\n" +
+                test::probe_body("block", "block", {"ux", "uy", "vx", "vy", "rotation"}),
+        .output = test::no_frames("out")}
+        .toml();
 
 TEST(Contact, OverlapNoSolveResistedCarriesNoForceWithoutInertia) {
   // A block starts 10 um deep in its base, at rest, under gravity (docs/method-choices.md,
@@ -234,9 +191,9 @@ TEST(Contact, OverlapNoSolveResistedCarriesNoForceWithoutInertia) {
   auto quasi_static = at_rest;
   quasi_static.push_back("scene.analysis=\"quasi-static\"");
   const auto placed = test::run_scene_text(kBlockOnBaseScene, quasi_static, 0,
-                                           {{"block_on_base.geo", sunk_block_geo(0.0)}});
+                                           {{"block_on_base.geo", block_on_flat_base_geo(0.0)}});
   const auto sunk = test::run_scene_text(kBlockOnBaseScene, quasi_static, 0,
-                                         {{"block_on_base.geo", sunk_block_geo(1e-5)}});
+                                         {{"block_on_base.geo", block_on_flat_base_geo(1e-5)}});
   ASSERT_TRUE(placed.result.ok) << placed.result.reason;
   ASSERT_TRUE(sunk.result.ok) << sunk.result.reason;
   ASSERT_EQ(placed.history.at("block.uy").size(), sunk.history.at("block.uy").size());
@@ -247,7 +204,7 @@ TEST(Contact, OverlapNoSolveResistedCarriesNoForceWithoutInertia) {
           << column << " row " << i;
 
   const auto pushed = test::run_scene_text(kBlockOnBaseScene, at_rest, 0,
-                                           {{"block_on_base.geo", sunk_block_geo(1e-5)}});
+                                           {{"block_on_base.geo", block_on_flat_base_geo(1e-5)}});
   ASSERT_TRUE(pushed.result.ok) << pushed.result.reason;
   const auto& uy = pushed.history.at("block.uy");
   EXPECT_GT(*std::max_element(uy.begin(), uy.end()), 5e-6);
@@ -258,8 +215,8 @@ TEST(Friction, BrakesABlockSlidingOnAFlatBase) {
   // v0 / (mu g) = 0.549 s at v0^2 / (2 mu g) = 0.549 m; within 2 % (measured +0.5 %).
   // Without friction it keeps v0 (checked to 1e-5 m/s).
   const double mu = std::tan(20.0 * std::numbers::pi / 180.0), g = 10.0, v0 = 2.0;
-  const auto run =
-      test::run_scene_text(kBlockOnBaseScene, {}, 0, {{"block_on_base.geo", block_on_base_geo()}});
+  const auto run = test::run_scene_text(kBlockOnBaseScene, {}, 0,
+                                        {{"block_on_base.geo", block_on_flat_base_geo()}});
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   const auto& t = run.history.at("time");
   const auto& vx = run.history.at("block.vx");
@@ -282,7 +239,7 @@ TEST(Friction, BrakesABlockSlidingOnAFlatBase) {
               kinetic0 + run.history.at("energy.external_work").back(), 0.01 * kinetic0);
 
   const auto free = test::run_scene_text(kBlockOnBaseScene, {"joint.0.friction_angle=0"}, 0,
-                                         {{"block_on_base.geo", block_on_base_geo()}});
+                                         {{"block_on_base.geo", block_on_flat_base_geo()}});
   ASSERT_TRUE(free.result.ok) << free.result.reason;
   EXPECT_NEAR(free.history.at("block.vx").back(), v0, 1e-5);
   EXPECT_NEAR(free.history.at("block.ux").back(), v0 * 0.8, 1e-5);
@@ -301,35 +258,11 @@ TEST(Joints, BondWithTensileStrengthHoldsAHangingBlockUntilTooWeak) {
   // the release doubles it for a moment. With tensile strength and cohesion 5 x 13 kPa the
   // bond holds (the block moves less than 1e-5 m); at 0.5 x 13 kPa it breaks and the block
   // falls freely: u_y = -1/2 g t^2 within 0.1 %.
-  const std::string scene = R"(
-[scene]
-name = "hanging"
-analysis = "dynamic"
-gravity = [0.0, -10.0]
-[time]
-dt = 1e-3
-end = 0.3
-[mesh]
-geo = "hanging.geo"
-[[material]]
-body = "*"
-density = 2600.0
-young = 10e9
-poisson = 0.25
-[[joint]]
-between = ["ledge", "block"]
-friction_angle = 30.0
-[[boundary]]
-on = "ledge_top"
-fix = ["x", "y"]
-[[probe]]
-name = "block"
-body = "block"
-fields = ["uy"]
-[output]
-dir = "out"
-every = 0
-)";
+  const std::string scene = test::scene_table("hanging", "dynamic", "gravity = [0.0, -10.0]\n") +
+                            "[time]\ndt = 1e-3\nend = 0.3\n[mesh]\ngeo = \"hanging.geo\"\n" +
+                            test::material("*", 2600.0, 10e9, 0.25) +
+                            test::joint("ledge", "block", 30.0) + test::fixed("ledge_top") +
+                            test::probe_body("block", "block", {"uy"}) + test::no_frames("out");
   const auto strong =
       test::run_scene_text(scene, {"joint.0.tensile_strength=65e3", "joint.0.cohesion=65e3"}, 0,
                            {{"hanging.geo", hanging_block_geo()}});

@@ -3,38 +3,21 @@
 
 #include <cmath>
 
-#include "test_support.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
 
 namespace rockdd {
 namespace {
 
+/// A free 1 m x 0.5 m block (E = 10 GPa, rho = 2600) falling under gravity for 1 s in steps of
+/// 10 ms; `extra` adds tables.
 std::string free_block(const std::string& integrator, const std::string& extra) {
-  return R"(
-[scene]
-name = "free-block"
-analysis = "dynamic"
-gravity = [0.0, -10.0]
-[time]
-dt = 0.01
-end = 1.0
-integrator = ")" +
-         integrator + R"("
-[mesh]
-shape = "rectangle"
-size = [1.0, 0.5]
-divisions = [4, 2]
-[[material]]
-body = "body"
-density = 2600.0
-young = 10e9
-poisson = 0.25
-[[probe]]
-name = "block"
-body = "body"
-fields = ["ux", "uy", "vx", "vy", "rotation", "area", "kinetic"]
-[output]
-every = 0
-)" + extra;
+  return test::scene_table("free-block", "dynamic", "gravity = [0.0, -10.0]\n") +
+         "[time]\ndt = 0.01\nend = 1.0\nintegrator = \"" + integrator + "\"\n" +
+         test::rectangle_mesh(1.0, 0.5, {4, 2}) + test::material("body", 2600.0, 10e9, 0.25) +
+         test::probe_body("block", "body",
+                          {"ux", "uy", "vx", "vy", "rotation", "area", "kinetic"}) +
+         test::no_frames() + extra;
 }
 
 std::map<std::string, std::vector<double>> run(const std::string& text) {
@@ -46,34 +29,9 @@ std::map<std::string, std::vector<double>> run(const std::string& text) {
 /// A 1 m x 2 m column on a fixed base under gravity (E = 1 GPa, rho = 2500), with a probe of
 /// the base's reaction; `time` is the body of its [time] table.
 std::string column(const std::string& analysis, const std::string& time) {
-  return R"(
-[scene]
-name = "column"
-analysis = ")" +
-         analysis + R"("
-gravity = [0.0, -10.0]
-[time]
-)" + time +
-         R"(
-[mesh]
-shape = "rectangle"
-size = [1.0, 2.0]
-divisions = [4, 8]
-[[material]]
-body = "body"
-density = 2500.0
-young = 1e9
-poisson = 0.2
-[[boundary]]
-on = "bottom"
-fix = ["x", "y"]
-[[probe]]
-name = "base"
-on = "bottom"
-fields = ["fy"]
-[output]
-every = 0
-)";
+  return test::scene_table("column", analysis, "gravity = [0.0, -10.0]\n") + "[time]\n" + time +
+         "\n" + test::rectangle_mesh(1.0, 2.0, {4, 8}) + test::material("body", 2500.0, 1e9, 0.2) +
+         test::fixed("bottom") + test::probe_on("base", "bottom", {"fy"}) + test::no_frames();
 }
 
 TEST(FreeBlock, FallsAsHalfGTSquaredWithBothIntegrators) {

@@ -2,9 +2,15 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <numbers>
+#include <string>
 
-#include "test_support.hpp"
+#include "engine/engine.hpp"
+#include "engine/report/run_result.hpp"
+#include "support/csv_columns.hpp"
+#include "support/data_file.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {

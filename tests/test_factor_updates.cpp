@@ -11,7 +11,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "test_support.hpp"
+#include "support/scene_run.hpp"
 
 namespace rockdd {
 namespace {

@@ -9,77 +9,36 @@
 
 #include "engine/damage/damage_stage.hpp"
 #include "engine/damage/detachment.hpp"
-#include "test_support.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
 
 /// A 0.1 m x 0.05 m bar pulled at its right end (uniaxial tension, quasi-static).
+/// E = 20 GPa, ft = 2 MPa; the right end moves 5e-7 m a step of 1 s, to t = 12 s. `extra`
+/// follows the material's keys (heterogeneity, detachment, and tables after them).
 std::string bar_in_tension(const std::string& extra) {
-  return R"(
-[scene]
-name = "bar"
-analysis = "quasi-static"
-[time]
-dt = 1.0
-end = 12.0
-[mesh]
-shape = "rectangle"
-size = [0.1, 0.05]
-divisions = [20, 10]
-[[material]]
-body = "*"
-density = 2700.0
-young = 20e9
-poisson = 0.2
-tensile_strength = 2e6
-friction_angle = 30.0
-)" + extra +
-         R"(
-[[boundary]]
-on = "left"
-fix = ["x"]
-[[boundary]]
-on = "bottom"
-velocity_y = 0.0
-[[boundary]]
-on = "right"
-velocity_x = 5e-7
-[[probe]]
-name = "right"
-on = "right"
-fields = ["fx"]
-[output]
-dir = "out"
-every = 0
-)";
+  return test::scene_table("bar", "quasi-static") + "[time]\ndt = 1.0\nend = 12.0\n" +
+         test::rectangle_mesh(0.1, 0.05, {20, 10}) +
+         test::material("*", 2700.0, 20e9, 0.2,
+                        "tensile_strength = 2e6\nfriction_angle = 30.0\n" + extra) +
+         test::fixed("left", {"x"}) + "[[boundary]]\non = \"bottom\"\nvelocity_y = 0.0\n" +
+         "[[boundary]]\non = \"right\"\nvelocity_x = 5e-7\n" +
+         test::probe_on("right", "right", {"fx"}) + test::no_frames("out");
 }
 
 TEST(Heterogeneity, TheSeedFixesTheSpecimen) {
   // Weibull m = 1.5 draws of E and ft over 10^4 elements: the same seed gives the same
   // specimen bit for bit, another seed another one; sample means within 3 % of the scene's
   // (the standard error of the mean is 0.7 % for m = 1.5).
-  const std::string text = R"(
-[scene]
-name = "specimen"
-analysis = "static"
-[mesh]
-shape = "rectangle"
-size = [1.0, 0.5]
-divisions = [100, 50]
-[[material]]
-body = "*"
-density = 2700.0
-young = 50e9
-poisson = 0.2
-tensile_strength = 7e6
-homogeneity = 1.5
-heterogeneous = ["young", "tensile_strength"]
-seed = 42
-[[boundary]]
-on = "bottom"
-fix = ["x", "y"]
-)";
+  const std::string text =
+      test::scene_table("specimen", "static") + test::rectangle_mesh(1.0, 0.5, {100, 50}) +
+      test::material("*", 2700.0, 50e9, 0.2,
+                     "tensile_strength = 7e6\nhomogeneity = 1.5\n"
+                     "heterogeneous = [\"young\", \"tensile_strength\"]\nseed = 42\n") +
+      test::fixed("bottom");
   test::TempDir dir;
   const Scene scene = test::scene_from_text(text, dir.path());
   const Model a = build_scene_model(scene), b = build_scene_model(scene);
@@ -248,27 +207,11 @@ TEST(DamageEvents, OnlyTheMostOverstressedElementsStartDamageInOnePass) {
   // alone (1.2 / 1.005 > 1.1), band 0.1 both (1.2 / 1.1 = 1.09 < 1.1). Damage of an element
   // already damaged grows whatever the band.
   test::TempDir dir;
-  const Scene scene = test::scene_from_text(R"(
-[scene]
-name = "two"
-analysis = "quasi-static"
-[time]
-dt = 1.0
-steps = 1
-[mesh]
-shape = "rectangle"
-size = [0.1, 0.1]
-divisions = [1, 1]
-[[material]]
-density = 2700.0
-young = 20e9
-poisson = 0.2
-tensile_strength = 2e6
-[[boundary]]
-on = "left"
-fix = ["x", "y"]
-)",
-                                            dir.path());
+  const Scene scene = test::scene_from_text(
+      test::scene_table("two", "quasi-static") + "[time]\ndt = 1.0\nsteps = 1\n" +
+          test::rectangle_mesh(0.1, 0.1, {1, 1}) +
+          test::material("", 2700.0, 20e9, 0.2, "tensile_strength = 2e6\n") + test::fixed("left"),
+      dir.path());
   const double ft = 2e6, young = 20e9;
   auto load = [&](Model& model, double s0, double s1) {
     const double s[2] = {s0, s1};

@@ -13,7 +13,10 @@
 #include <utility>
 #include <vector>
 
-#include "test_support.hpp"
+#include "support/data_file.hpp"
+#include "support/file_text.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
 
 namespace rockdd {
 namespace {
@@ -309,40 +312,15 @@ struct PressedDisk {
 };
 
 PressedDisk press_disk(bool cut, double travel) {
-  std::string scene = R"(
-[scene]
-name = "halved-disk"
-analysis = "static"
-plane = "stress"
-[time]
-steps = 1
-[mesh]
-geo = "halved_disk.geo"
-[[material]]
-body = "*"
-density = 2600.0
-young = 20e9
-poisson = 0.2
-[[boundary]]
-on = "bottom_flat"
-fix = ["y"]
-[[boundary]]
-on = "top_flat"
-velocity_y = )" + std::to_string(-travel) +
-                      R"(
-[[probe]]
-name = "top"
-on = "top_flat"
-fields = ["fy"]
-[output]
-every = 0
-)";
+  std::string scene = test::scene_table("halved-disk", "static", "plane = \"stress\"\n") +
+                      "[time]\nsteps = 1\n[mesh]\ngeo = \"halved_disk.geo\"\n" +
+                      test::material("*", 2600.0, 20e9, 0.2) + test::fixed("bottom_flat", {"y"}) +
+                      "[[boundary]]\non = \"top_flat\"\nvelocity_y = " + std::to_string(-travel) +
+                      "\n" + test::probe_on("top", "top_flat", {"fy"}) + test::no_frames();
   // Intact: x held at the flats' midpoints, as in data/; cut: each half at its own.
-  scene += cut ? "[[joint]]\nbetween = [\"left\", \"right\"]\nfriction_angle = 0.0\n"
-                 "[[boundary]]\non = \"bottom_left\"\nfix = [\"x\"]\n"
-                 "[[boundary]]\non = \"bottom_right\"\nfix = [\"x\"]\n"
-               : "[[boundary]]\non = \"bottom\"\nfix = [\"x\"]\n"
-                 "[[boundary]]\non = \"top\"\nfix = [\"x\"]\n";
+  scene += cut ? test::joint("left", "right", 0.0) + test::fixed("bottom_left", {"x"}) +
+                     test::fixed("bottom_right", {"x"})
+               : test::fixed("bottom", {"x"}) + test::fixed("top", {"x"});
   const auto run = test::run_scene_text(
       scene, {}, 1,
       {{"halved_disk.geo", test::read_text(test::data_file("verification/halved_disk.geo"))}});

@@ -8,7 +8,9 @@
 
 #include "engine/time/rotation_correction.hpp"
 #include "kernels/cst.hpp"
-#include "test_support.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
@@ -16,41 +18,11 @@ namespace {
 /// A 1 m x 0.5 m block, no gravity, spinning at `omega` for three turns.
 std::string spinning_block(double omega, const std::string& integrator) {
   const double end = 3.0 * 2.0 * std::numbers::pi / omega;
-  return R"(
-[scene]
-name = "spin"
-analysis = "dynamic"
-gravity = [0.0, 0.0]
-[time]
-dt = 5e-3
-end = )" +
-         std::to_string(end) +
-         R"(
-integrator = ")" +
-         integrator +
-         R"("
-[mesh]
-shape = "rectangle"
-size = [1.0, 0.5]
-divisions = [8, 4]
-[[material]]
-body = "*"
-density = 2600.0
-young = 10e9
-poisson = 0.25
-[[initial]]
-body = "body"
-angular_velocity = )" +
-         std::to_string(omega) +
-         R"(
-[[probe]]
-name = "block"
-body = "body"
-fields = ["rotation"]
-[output]
-dir = "out"
-every = 0
-)";
+  return test::scene_table("spin", "dynamic", "gravity = [0.0, 0.0]\n") +
+         "[time]\ndt = 5e-3\nend = " + std::to_string(end) + "\nintegrator = \"" + integrator +
+         "\"\n" + test::rectangle_mesh(1.0, 0.5, {8, 4}) + test::material("*", 2600.0, 10e9, 0.25) +
+         "[[initial]]\nbody = \"body\"\nangular_velocity = " + std::to_string(omega) + "\n" +
+         test::probe_body("block", "body", {"rotation"}) + test::no_frames("out");
 }
 
 class SpinningBlock : public ::testing::TestWithParam<const char*> {};

@@ -21,6 +21,8 @@
 #include "engine/mesh/mesh.hpp"
 #include "engine/mesh/mesher_process.hpp"
 #include "engine/mesh/node_ordering.hpp"
+#include "support/mesh_file.hpp"
+#include "support/same_mesh.hpp"
 
 namespace rockdd {
 namespace {
@@ -47,11 +49,9 @@ MeshSpec disk(double radius, Vec2 centre, double alpha_deg, double element_size)
   return spec;
 }
 
+/// A mesh file of tests/meshes.
 MeshSpec file(MeshSpec::Kind kind, const std::string& name) {
-  MeshSpec spec;
-  spec.kind = kind;
-  spec.file = kMeshes / name;
-  return spec;
+  return test::mesh_file(kind, kMeshes / name);
 }
 
 Vec2 node(const Mesh& mesh, std::int32_t n) {
@@ -450,12 +450,7 @@ TEST(MshFile, Formats41And22ReadTheSame) {
   const Mesh v22 = build_mesh(file(MeshSpec::Kind::msh, "square_22.msh"), kScene);
   EXPECT_EQ(v41.num_elements(), 8u);
   EXPECT_EQ(v41.num_nodes(), 9u);
-  EXPECT_EQ(v41.xy, v22.xy);
-  EXPECT_EQ(v41.triangles, v22.triangles);
-  EXPECT_EQ(v41.element_surface, v22.element_surface);
-  EXPECT_EQ(v41.surface_body, v22.surface_body);
-  EXPECT_EQ(v41.curves, v22.curves);
-  EXPECT_EQ(v41.points, v22.points);
+  test::expect_same_mesh(v41, v22);
   EXPECT_EQ(v41.surface_body, std::vector<std::string>{"plate"});
   EXPECT_EQ(v41.curves.at("bottom").size(), 2u);
   EXPECT_EQ(named_point(v41, "origin"), (Vec2{0, 0}));

@@ -10,11 +10,13 @@
 #include <fstream>
 #include <iterator>
 #include <optional>
-#include <random>
 #include <string>
 
 #include "engine/mesh/mesh.hpp"
 #include "engine/mesh/mesh_cache.hpp"
+#include "support/mesh_file.hpp"
+#include "support/same_mesh.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
@@ -23,14 +25,9 @@ const std::filesystem::path kScene = "scene.toml";
 const std::filesystem::path kMeshes = std::filesystem::path(ROCKDD_SOURCE_DIR) / "tests/meshes";
 const std::filesystem::path kData = std::filesystem::path(ROCKDD_SOURCE_DIR) / "data";
 
+/// A cache folder not made yet (the cache makes it), inside a scratch folder removed at the end.
 class CacheDir {
  public:
-  CacheDir() {
-    std::random_device rd;
-    path_ = std::filesystem::temp_directory_path() /
-            ("rockdd-mesh-cache-" + std::to_string(rd()) + std::to_string(rd()));
-  }
-  ~CacheDir() { std::filesystem::remove_all(path_); }
   const std::filesystem::path& path() const { return path_; }
   /// The one entry in the folder.
   std::filesystem::path entry() const {
@@ -41,7 +38,8 @@ class CacheDir {
   }
 
  private:
-  std::filesystem::path path_;
+  test::TempDir root_;
+  std::filesystem::path path_ = root_.path() / "mesh-cache";
 };
 
 MeshSpec disk(double element_size) {
@@ -61,27 +59,14 @@ MeshSpec rectangle(std::array<int, 2> divisions) {
   return spec;
 }
 
-MeshSpec file(MeshSpec::Kind kind, const std::filesystem::path& path) {
-  MeshSpec spec;
-  spec.kind = kind;
-  spec.file = path;
-  return spec;
-}
-
-void expect_same_mesh(const Mesh& a, const Mesh& b) {
-  EXPECT_EQ(a.xy, b.xy);  // doubles compared bit for bit (no NaN in a mesh)
-  EXPECT_EQ(a.triangles, b.triangles);
-  EXPECT_EQ(a.element_surface, b.element_surface);
-  EXPECT_EQ(a.surface_body, b.surface_body);
-  EXPECT_EQ(a.curves, b.curves);
-  EXPECT_EQ(a.points, b.points);
-}
+using test::expect_same_mesh;
+using test::mesh_file;
 
 TEST(MeshCache, AHitIsBitwiseTheMeshGmshMakes) {
   CacheDir cache;
-  for (const MeshSpec& spec :
-       {disk(1e-3), rectangle({96, 24}), file(MeshSpec::Kind::geo, kData / "sliding_block.geo"),
-        file(MeshSpec::Kind::msh, kMeshes / "square_41.msh")}) {
+  for (const MeshSpec& spec : {disk(1e-3), rectangle({96, 24}),
+                               mesh_file(MeshSpec::Kind::geo, kData / "sliding_block.geo"),
+                               mesh_file(MeshSpec::Kind::msh, kMeshes / "square_41.msh")}) {
     const Mesh fresh = build_mesh(spec, kScene);
     const CachedMesh first = build_mesh_with_cache(spec, kScene, cache.path());
     const CachedMesh second = build_mesh_with_cache(spec, kScene, cache.path());
@@ -130,10 +115,10 @@ TEST(MeshCache, AFileIsKeyedByItsBytesNotItsPath) {
   const std::filesystem::path copy = dir.path() / "copy.geo";
   std::filesystem::copy_file(kMeshes / "square.geo", copy);
   const std::string original =
-      mesh_cache_key(file(MeshSpec::Kind::geo, kMeshes / "square.geo")).value();
-  EXPECT_EQ(mesh_cache_key(file(MeshSpec::Kind::geo, copy)).value(), original);
+      mesh_cache_key(mesh_file(MeshSpec::Kind::geo, kMeshes / "square.geo")).value();
+  EXPECT_EQ(mesh_cache_key(mesh_file(MeshSpec::Kind::geo, copy)).value(), original);
   std::ofstream(copy, std::ios::app) << "// an edit\n";
-  EXPECT_NE(mesh_cache_key(file(MeshSpec::Kind::geo, copy)).value(), original);
+  EXPECT_NE(mesh_cache_key(mesh_file(MeshSpec::Kind::geo, copy)).value(), original);
 }
 
 TEST(MeshCache, AGeoThatReadsOtherFilesIsNotCached) {
@@ -142,9 +127,9 @@ TEST(MeshCache, AGeoThatReadsOtherFilesIsNotCached) {
   const std::filesystem::path geo = dir.path() / "outer.geo";
   std::filesystem::copy_file(kMeshes / "square.geo", dir.path() / "square.geo");
   std::ofstream(geo) << "Include \"square.geo\";\n";
-  EXPECT_FALSE(mesh_cache_key(file(MeshSpec::Kind::geo, geo)));
+  EXPECT_FALSE(mesh_cache_key(mesh_file(MeshSpec::Kind::geo, geo)));
   const CachedMesh mesh =
-      build_mesh_with_cache(file(MeshSpec::Kind::geo, geo), kScene, dir.path() / "cache");
+      build_mesh_with_cache(mesh_file(MeshSpec::Kind::geo, geo), kScene, dir.path() / "cache");
   EXPECT_EQ(mesh.cache, MeshCacheOutcome::uncacheable);
   EXPECT_EQ(mesh.mesh.num_elements(), 8u);  // square.geo: 2 x 2 cells, 2 triangles each
   EXPECT_FALSE(std::filesystem::exists(dir.path() / "cache"));
@@ -311,7 +296,7 @@ TEST(MeshCache, AHitOrAMissNamesWhereTheMeshIsKept) {
 TEST(GmshSession, AMeshDoesNotDependOnWhatTheProcessMeshedBefore) {
   const Mesh first = build_mesh(rectangle({96, 24}), kScene);
   const Mesh second = build_mesh(rectangle({96, 24}), kScene);
-  build_mesh(file(MeshSpec::Kind::geo, kData / "sliding_block.geo"), kScene);
+  build_mesh(mesh_file(MeshSpec::Kind::geo, kData / "sliding_block.geo"), kScene);
   const Mesh after_geo = build_mesh(rectangle({96, 24}), kScene);
   expect_same_mesh(second, first);
   expect_same_mesh(after_geo, first);

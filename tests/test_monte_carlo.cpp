@@ -20,7 +20,9 @@
 #include "engine/monte_carlo/ensemble_table.hpp"
 #include "engine/monte_carlo/monte_carlo.hpp"
 #include "engine/monte_carlo/weibull_fit.hpp"
-#include "test_support.hpp"
+#include "support/command_line.hpp"
+#include "support/file_text.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
@@ -492,11 +494,13 @@ TEST(MonteCarloCommand, AKilledWorkerIsACrashedRowThatTheRerunRunsAgain) {
   const pid_t parent = start_rockdd(mc, tmp.path(), tmp.path() / "log");
   // The parent first forks a check of the scene: seed 7's worker is the child named for it.
   pid_t worker = 0;
-  ASSERT_TRUE(poll_until([&] {
-    for (const pid_t child : children_of(parent))
-      if (name_of(child) == "seed 7") worker = child;
-    return worker != 0;
-  }, 60.0));
+  ASSERT_TRUE(poll_until(
+      [&] {
+        for (const pid_t child : children_of(parent))
+          if (name_of(child) == "seed 7") worker = child;
+        return worker != 0;
+      },
+      60.0));
   kill(worker, SIGKILL);
   int status = 0;
   waitpid(parent, &status, 0);

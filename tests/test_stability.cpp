@@ -10,7 +10,14 @@
 #include <numbers>
 
 #include "engine/common/number_format.hpp"
-#include "test_support.hpp"
+#include "support/block_on_base.hpp"
+#include "support/command_line.hpp"
+#include "support/end_loaded_plate.hpp"
+#include "support/file_text.hpp"
+#include "support/rectangle_geo.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
@@ -61,7 +68,7 @@ TEST(Stability, HugeCoordinatesAreRefusedNotMeshedForEver) {
   EXPECT_EQ(shape.exit_code, 2) << shape.output;
   EXPECT_NE(shape.output.find("mesh.size"), std::string::npos) << shape.output;
 
-  const std::string material = "[[material]]\ndensity = 2600\nyoung = 1e10\npoisson = 0.3\n";
+  const std::string material = test::material("", 2600.0, 1e10, 0.3);
   std::ofstream(tmp.path() / "huge.geo") << test::rectangle_geo(0, 0.0, 0.0, 1e308, 1e308, 1e307)
                                          << "Physical Surface(\"plate\") = {1};\n";
   std::ofstream(tmp.path() / "geo.toml") << "[scene]\nname = \"huge\"\n[mesh]\ngeo = \"huge.geo\"\n"
@@ -113,29 +120,12 @@ TEST(Stability, OneTriangleSolvesToTheClosedForm) {
   // t A diag(G, E / (1 - nu^2)) (plane stress, A = 1/2), so u_y = -2 F (1 - nu^2) / (E t),
   // u_x = 0, exactly.
   const double E = 10e9, nu = 0.25, F = 1e6;
-  const std::string scene = R"(
-[scene]
-name = "one-triangle"
-[mesh]
-msh = ")" + (kSource / "tests/meshes/one_triangle.msh").string() +
-                            R"("
-[[material]]
-density = 2600
-young = 10e9
-poisson = 0.25
-[[boundary]]
-on = "base"
-fix = ["x", "y"]
-[[load]]
-on = "apex"
-force = [0, -1e6]
-[[probe]]
-name = "apex"
-on = "apex"
-fields = ["ux", "uy"]
-[output]
-every = 0
-)";
+  const std::string scene = test::scene_table("one-triangle", "") + "[mesh]\nmsh = \"" +
+                            (kSource / "tests/meshes/one_triangle.msh").string() + "\"\n" +
+                            test::material("", 2600.0, E, nu) + test::fixed("base") +
+                            "[[load]]\non = \"apex\"\nforce = [0.0, " + test::toml_number(-F) +
+                            "]\n" + test::probe_on("apex", "apex", {"ux", "uy"}) +
+                            test::no_frames();
   const auto run = test::run_scene_text(scene);
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   ASSERT_EQ(run.model.num_elements(), 1);
@@ -172,32 +162,8 @@ TEST(Stability, NearlyIncompressiblePlaneStrainBlockMatchesTheClosedForm) {
   // exact for CST on any mesh (patch test). Measured: every node within 1e-10 of the largest
   // displacement (PatchTest.NearlyIncompressiblePlaneStrainStaysFinite checks the stress).
   const double E = 40e9, nu = 0.4999, sigma = 2e6;
-  const std::string scene = R"(
-[scene]
-name = "incompressible"
-plane = "strain"
-thickness = 0.5
-[mesh]
-shape = "rectangle"
-size = [2.0, 1.0]
-element_size = 0.13
-[[material]]
-density = 2500.0
-young = 40e9
-poisson = 0.4999
-[[boundary]]
-on = "left"
-fix = ["x"]
-[[boundary]]
-on = "bottom_left"
-fix = ["x", "y"]
-[[load]]
-on = "right"
-force = [1e6, 0.0]
-[output]
-every = 0
-)";
-  const auto run = test::run_scene_text(scene);
+  const test::EndLoadedPlate plate{.name = "incompressible", .plane = "strain", .poisson = nu};
+  const auto run = test::run_scene_text(plate.toml());
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   expect_finite(run);
   const double ux_end = (1 - nu * nu) * sigma * 2.0 / E;
@@ -214,28 +180,11 @@ TEST(Stability, SliverTrianglesPassThePatchTest) {
   // 178 degrees; pulled by sigma = 1 MPa, every element carries sigma_xx = sigma and every
   // node sits at u_x = sigma x / E, u_y = -nu sigma y / E (plane stress). Measured: 1e-11.
   const double E = 40e9, nu = 0.25, sigma = 1e6;
-  const std::string scene = R"(
-[scene]
-name = "slivers"
-[mesh]
-msh = ")" + (kSource / "tests/meshes/slivers_1deg.msh").string() +
-                            R"("
-[[material]]
-density = 2500.0
-young = 40e9
-poisson = 0.25
-[[boundary]]
-on = "left"
-fix = ["x"]
-[[boundary]]
-on = "origin"
-fix = ["x", "y"]
-[[load]]
-on = "right"
-force = [1e6, 0.0]
-[output]
-every = 0
-)";
+  const std::string scene = test::scene_table("slivers", "") + "[mesh]\nmsh = \"" +
+                            (kSource / "tests/meshes/slivers_1deg.msh").string() + "\"\n" +
+                            test::material("", 2500.0, E, nu) + test::fixed("left", {"x"}) +
+                            test::fixed("origin") +
+                            "[[load]]\non = \"right\"\nforce = [1e6, 0.0]\n" + test::no_frames();
   const auto run = test::run_scene_text(scene);
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   ASSERT_EQ(run.model.num_elements(), 16);
@@ -299,64 +248,27 @@ Physical Curve("block_top") = {13};
 )";
 }
 
-/// The block resting on the base under gravity; the [time] and materials are the caller's.
+/// The block resting on the base under gravity, joint friction 20 deg, with probes of the
+/// facing edges, the block's top and the block; the [time] and materials are the caller's.
 std::string block_on_base(const std::string& analysis, const std::string& time,
                           const std::string& materials) {
-  return R"(
-[scene]
-name = "block-on-base"
-analysis = ")" +
-         analysis +
-         R"("
-gravity = [0.0, -10.0]
-[time]
-)" + time +
-         R"(
-[mesh]
-geo = "block_on_base.geo"
-)" + materials +
-         R"(
-[[joint]]
-between = ["base", "block"]
-friction_angle = 20.0
-[[boundary]]
-on = "base_bottom"
-fix = ["x", "y"]
-[[probe]]
-name = "base"
-on = "base_contact"
-fields = ["uy"]
-[[probe]]
-name = "bottom"
-on = "block_bottom"
-fields = ["uy"]
-[[probe]]
-name = "top"
-on = "block_top"
-fields = ["uy"]
-[[probe]]
-name = "block"
-body = "block"
-fields = ["uy", "vy"]
-[output]
-every = 0
-)";
+  return test::BlockOnBaseScene{.analysis = analysis,
+                                .time = time,
+                                .materials = materials,
+                                .friction_angle = 20.0,
+                                .more = test::probe_on("base", "base_contact", {"uy"}) +
+                                        test::probe_on("bottom", "block_bottom", {"uy"}) +
+                                        test::probe_on("top", "block_top", {"uy"}) +
+                                        test::probe_body("block", "block", {"uy", "vy"})}
+      .toml();
 }
 
-constexpr const char* kRock = R"([[material]]
-body = "*"
-density = 2600.0
-young = 10e9
-poisson = 0.25
-)";
+const std::string kRock = test::material("*", 2600.0, 10e9, 0.25);
 
 /// Materials of base and block: the block's young modulus `block_E`, the base's `base_E`.
 std::string two_materials(double base_E, double block_E) {
-  auto material = [](const char* body, double E) {
-    return std::string("[[material]]\nbody = \"") + body +
-           "\"\ndensity = 2600.0\nyoung = " + format_number(E) + "\npoisson = 0.25\n";
-  };
-  return material("base", base_E) + material("block", block_E);
+  return test::material("base", 2600.0, base_E, 0.25) +
+         test::material("block", 2600.0, block_E, 0.25);
 }
 
 test::SceneRun run_block_on_base(const std::string& scene,
@@ -505,34 +417,12 @@ TEST(Stability, ImpactAt100MetresPerSecondWithNewmarkStaysBounded) {
 
 /// Model I's beam (tension damage, ft = 2 MPa, E = 10 GPa) held on the left, in one static step;
 /// the loading of its right end is the caller's.
-constexpr const char* kBeamToBreak = R"(
-[scene]
-name = "all-damaged"
-[time]
-dt = 1.0
-steps = 1
-[mesh]
-shape = "rectangle"
-size = [0.04, 0.01]
-divisions = [8, 2]
-[[material]]
-density = 2600
-young = 10e9
-poisson = 0.25
-tensile_strength = 2e6
-[[boundary]]
-on = "left"
-fix = ["x"]
-[[boundary]]
-on = "bottom_left"
-fix = ["x", "y"]
-[[probe]]
-name = "right"
-on = "right"
-fields = ["fx", "ux"]
-[output]
-every = 0
-)";
+const std::string kBeamToBreak =
+    test::scene_table("all-damaged", "") + "[time]\ndt = 1.0\nsteps = 1\n" +
+    test::rectangle_mesh(0.04, 0.01, {8, 2}) +
+    test::material("", 2600.0, 10e9, 0.25, "tensile_strength = 2e6\n") +
+    test::fixed("left", {"x"}) + test::fixed("bottom_left") +
+    test::probe_on("right", "right", {"fx", "ux"}) + test::no_frames();
 
 TEST(Stability, EveryElementFullyDamagedInOneStep) {
   // Required: finite numbers, no energy created, and every element at w = 1 (or a clear
@@ -573,8 +463,8 @@ TEST(Stability, EveryElementFullyDamagedInOneStepBalancesItsEnergy) {
   // while its end moved; the step's work is counted at the first solve's reactions (the
   // cascade after it runs at a fixed end). Counted on the forces after damage, as it once
   // was, the work was 8e-4 J against 800 J dissipated.
-  const auto run = test::run_scene_text(std::string(kBeamToBreak) +
-                                        "[[boundary]]\non = \"right\"\nvelocity_x = 8e-4\n");
+  const auto run =
+      test::run_scene_text(kBeamToBreak + "[[boundary]]\non = \"right\"\nvelocity_x = 8e-4\n");
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   const auto& h = run.history;
   EXPECT_NEAR(h.at("energy.strain").back() + h.at("energy.dissipated").back(),

@@ -6,51 +6,23 @@
 #include <cmath>
 #include <nlohmann/json.hpp>
 
-#include "test_support.hpp"
+#include "support/end_loaded_plate.hpp"
+#include "support/file_text.hpp"
+#include "support/scene_run.hpp"
+#include "support/scene_toml.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
 
-// A 2 m x 1 m plate on an unstructured mesh: left edge on rollers (x fixed), the
-// bottom-left corner pinned, pulled on the right by a total force F.
+// The 2 m x 1 m end-loaded plate (test::EndLoadedPlate: E = 40 GPa, 0.5 m thick, pulled on the
+// right by F = 1e6 N) with probes of its right end's displacement and the left support's reaction.
 std::string uniaxial_plate(const std::string& plane, double poisson) {
-  return R"(
-[scene]
-name = "uniaxial"
-analysis = "static"
-plane = ")" +
-         plane + R"("
-thickness = 0.5
-[mesh]
-shape = "rectangle"
-size = [2.0, 1.0]
-element_size = 0.13
-[[material]]
-body = "body"
-density = 2500.0
-young = 40e9
-poisson = )" +
-         std::to_string(poisson) + R"(
-[[boundary]]
-on = "left"
-fix = ["x"]
-[[boundary]]
-on = "bottom_left"
-fix = ["x", "y"]
-[[load]]
-on = "right"
-force = [1e6, 0.0]
-[[probe]]
-name = "right"
-on = "right"
-fields = ["ux", "uy"]
-[[probe]]
-name = "left"
-on = "left"
-fields = ["fx", "fy"]
-[output]
-every = 0
-)";
+  return test::EndLoadedPlate{.plane = plane,
+                              .poisson = poisson,
+                              .probes = test::probe_on("right", "right", {"ux", "uy"}) +
+                                        test::probe_on("left", "left", {"fx", "fy"})}
+      .toml();
 }
 
 using test::run_scene_text;
@@ -108,41 +80,12 @@ TEST(StaticAnalysis, ClapeyronStrainEnergyEqualsExternalWork) {
 
 TEST(StaticAnalysis, HydrostaticPressureGivesUniformStress) {
   // Pressure p on every side: sigma_xx = sigma_yy = -p everywhere (compression negative).
-  const std::string text = R"(
-[scene]
-name = "hydrostatic"
-analysis = "static"
-[mesh]
-shape = "rectangle"
-size = [1.0, 1.0]
-element_size = 0.15
-[[material]]
-body = "*"
-density = 2000.0
-young = 10e9
-poisson = 0.2
-[[boundary]]
-on = "bottom_left"
-fix = ["x", "y"]
-[[boundary]]
-on = "bottom_right"
-fix = ["y"]
-[[load]]
-on = "left"
-pressure = 5e6
-[[load]]
-on = "right"
-pressure = 5e6
-[[load]]
-on = "top"
-pressure = 5e6
-[[load]]
-on = "bottom"
-pressure = 5e6
-[output]
-every = 0
-)";
-  const StaticRun run = run_scene_text(text);
+  std::string text = test::scene_table("hydrostatic", "static") +
+                     test::rectangle_mesh(1.0, 1.0, 0.15) + test::material("*", 2000.0, 10e9, 0.2) +
+                     test::fixed("bottom_left") + test::fixed("bottom_right", {"y"});
+  for (const std::string side : {"left", "right", "top", "bottom"})
+    text += "[[load]]\non = \"" + side + "\"\npressure = 5e6\n";
+  const StaticRun run = run_scene_text(text + test::no_frames());
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   for (std::int32_t e = 0; e < run.model.num_elements(); ++e) {
     EXPECT_NEAR(run.model.stress[3 * e], -5e6, 1e-6);
@@ -153,31 +96,10 @@ every = 0
 
 TEST(StaticAnalysis, SelfWeightReactionEqualsTheWeight) {
   // Column 1 m x 4 m under gravity on a fixed base: the base pushes up with rho g A t.
-  const std::string text = R"(
-[scene]
-name = "column"
-analysis = "static"
-gravity = [0.0, -9.81]
-thickness = 2.0
-[mesh]
-shape = "rectangle"
-size = [1.0, 4.0]
-divisions = [5, 20]
-[[material]]
-body = "body"
-density = 2700.0
-young = 50e9
-poisson = 0.2
-[[boundary]]
-on = "bottom"
-fix = ["x", "y"]
-[[probe]]
-name = "base"
-on = "bottom"
-fields = ["fx", "fy"]
-[output]
-every = 0
-)";
+  const std::string text =
+      test::scene_table("column", "static", "gravity = [0.0, -9.81]\nthickness = 2.0\n") +
+      test::rectangle_mesh(1.0, 4.0, {5, 20}) + test::material("body", 2700.0, 50e9, 0.2) +
+      test::fixed("bottom") + test::probe_on("base", "bottom", {"fx", "fy"}) + test::no_frames();
   const StaticRun run = run_scene_text(text);
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   EXPECT_NEAR(run.history.at("base.fy").back(), 2700.0 * 9.81 * 4.0 * 2.0, 1e-6);
@@ -195,13 +117,10 @@ TEST(StaticAnalysis, LoadStepsRampTheLoadLinearly) {
 TEST(StaticAnalysis, ImposedVelocityMovesTheBoundaryEachStep) {
   // Displacement control: the right edge moves by v dt per step; after 5 steps of 0.1 s at
   // 1e-4 m/s it has moved 5e-5 m and the reaction is E eps h t = 40e9 * 2.5e-5 * 1 * 0.5.
-  std::string text = uniaxial_plate("stress", 0.25);
-  text.replace(text.find("[[load]]"), text.find("[[probe]]") - text.find("[[load]]"),
-               "[[boundary]]\non = \"right\"\nvelocity_x = 1e-4\n");
-  text.replace(text.find("name = \"right\"\non = \"right\"\nfields = [\"ux\", \"uy\"]"),
-               std::string("name = \"right\"\non = \"right\"\nfields = [\"ux\", \"uy\"]").size(),
-               "name = \"right\"\non = \"right\"\nfields = [\"ux\", \"fx\"]");
-  const StaticRun run = run_scene_text(text + "[time]\ndt = 0.1\nsteps = 5\n");
+  const test::EndLoadedPlate plate{.loading = "[[boundary]]\non = \"right\"\nvelocity_x = 1e-4\n",
+                                   .probes = test::probe_on("right", "right", {"ux", "fx"}) +
+                                             test::probe_on("left", "left", {"fx", "fy"})};
+  const StaticRun run = run_scene_text(plate.toml() + "[time]\ndt = 0.1\nsteps = 5\n");
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   EXPECT_NEAR(run.history.at("right.ux").back(), 5e-5, 1e-15);
   EXPECT_NEAR(run.history.at("right.fx").back(), 40e9 * 2.5e-5 * 0.5, 1e-3);
@@ -236,38 +155,12 @@ Curve Loop(2) = {2, 3, 4, -7}; Plane Surface(2) = {2};
 Physical Surface("soft") = {1}; Physical Surface("stiff") = {2};
 Physical Curve("left") = {6}; Physical Curve("right") = {3}; Physical Point("origin") = {1};
 )";
-  const std::string text = R"(
-[scene]
-name = "contrast"
-analysis = "static"
-[mesh]
-geo = "layers.geo"
-[[material]]
-body = "soft"
-density = 1000.0
-young = 1e4
-poisson = 0.0
-[[material]]
-body = "stiff"
-density = 1000.0
-young = 1e10
-poisson = 0.0
-[[boundary]]
-on = "left"
-fix = ["x"]
-[[boundary]]
-on = "origin"
-fix = ["x", "y"]
-[[load]]
-on = "right"
-force = [1.0, 0.0]
-[[probe]]
-name = "right"
-on = "right"
-fields = ["ux"]
-[output]
-every = 0
-)";
+  const std::string text =
+      test::scene_table("contrast", "static") + "[mesh]\ngeo = \"layers.geo\"\n" +
+      test::material("soft", 1000.0, 1e4, 0.0) + test::material("stiff", 1000.0, 1e10, 0.0) +
+      test::fixed("left", {"x"}) + test::fixed("origin") +
+      "[[load]]\non = \"right\"\nforce = [1.0, 0.0]\n" + test::probe_on("right", "right", {"ux"}) +
+      test::no_frames();
   const StaticRun run = run_scene_text(text, {}, 0, {{"layers.geo", layers_geo}});
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   const auto& history = run.history;
@@ -283,12 +176,9 @@ TEST(Determinism, HistoryIsIdenticalForOneAndTwoThreads) {
   Scene scene = test::scene_from_text(text, dir.path(), {"mesh.element_size=0.03"});
   std::string history[2];
   for (int threads = 1; threads <= 2; ++threads) {
-    Simulation sim(scene, build_scene_model(scene));
-    RunOptions options;
-    options.out_root = dir.path() / ("out" + std::to_string(threads));
-    options.threads = threads;
-    ASSERT_TRUE(sim.run(options).ok);
-    history[threads - 1] = test::read_text(options.out_root / "uniaxial" / "history.csv");
+    const auto out = dir.path() / ("out" + std::to_string(threads));
+    ASSERT_TRUE(test::run_scene(scene, out, threads).result.ok);
+    history[threads - 1] = test::read_text(out / "out" / "uniaxial" / "history.csv");
   }
   EXPECT_EQ(history[0], history[1]);
 }

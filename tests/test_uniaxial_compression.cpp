@@ -9,7 +9,10 @@
 #include <cmath>
 #include <numeric>
 
-#include "test_support.hpp"
+#include "support/data_file.hpp"
+#include "support/file_text.hpp"
+#include "support/scene_run.hpp"
+#include "support/temp_dir.hpp"
 
 namespace rockdd {
 namespace {
