@@ -82,20 +82,36 @@ std::string input_error_report(const InputError& error) {
   return error.where() + '\0' + error.key() + '\0' + error.expected();
 }
 
-}  // namespace
-
-void check_first_realization(const Scene& scene, const MonteCarloPlan& plan) {
-  int pipe_fds[2];
-  if (::pipe2(pipe_fds, O_CLOEXEC) != 0)
+/// A pipe whose ends close on exec, for a child's report to the parent.
+void open_report_pipe(int (&fds)[2]) {
+  if (::pipe2(fds, O_CLOEXEC) != 0)
     throw std::runtime_error(std::string("mc: pipe: ") + strerror(errno));
-  std::fflush(nullptr);
+}
+
+/// Forks a child that dies with this process and shows as `name` in ps and top (the kernel
+/// keeps 15 characters): its pid in the parent, 0 in the child.
+pid_t fork_named_child(const std::string& name) {
+  std::fflush(nullptr);  // no buffered output copied into the child
   const pid_t parent = ::getpid();
   const pid_t pid = ::fork();
   if (pid < 0) throw std::runtime_error(std::string("mc: fork: ") + strerror(errno));
   if (pid == 0) {
+    // An orphan worker would go on writing into a seed folder that the next run of the
+    // ensemble runs again.
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) ::_exit(kCrashed);
-    ::prctl(PR_SET_NAME, "rockdd check");  // told apart from the workers in ps and top
+    ::prctl(PR_SET_NAME, name.c_str());
+  }
+  return pid;
+}
+
+}  // namespace
+
+void check_first_realization(const Scene& scene, const MonteCarloPlan& plan) {
+  int pipe_fds[2];
+  open_report_pipe(pipe_fds);
+  const pid_t pid = fork_named_child("rockdd check");
+  if (pid == 0) {
     ::close(pipe_fds[0]);
     int code = kOk;
     try {
@@ -141,19 +157,9 @@ void RealizationWorkers::launch(std::uint64_t seed, const std::vector<int>& clos
   // A summary.json of an earlier attempt must not pass for this one's.
   std::filesystem::remove(plan_.realization_dir(seed) / "summary.json");
   int pipe_fds[2];
-  if (::pipe2(pipe_fds, O_CLOEXEC) != 0)
-    throw std::runtime_error(std::string("mc: pipe: ") + strerror(errno));
-  std::fflush(nullptr);  // no buffered output copied into the child
-  const pid_t parent = ::getpid();
-  const pid_t pid = ::fork();
-  if (pid < 0) throw std::runtime_error(std::string("mc: fork: ") + strerror(errno));
+  open_report_pipe(pipe_fds);
+  const pid_t pid = fork_named_child("seed " + std::to_string(seed));
   if (pid == 0) {
-    // A worker dies with the parent: an orphan would go on writing into a seed folder that
-    // the next run of the ensemble runs again.
-    ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-    if (::getppid() != parent) ::_exit(kCrashed);
-    // ps and top show which seed a worker runs (the kernel keeps 15 characters of it).
-    ::prctl(PR_SET_NAME, ("seed " + std::to_string(seed)).c_str());
     ::close(pipe_fds[0]);
     for (const int fd : close_in_child) ::close(fd);
     const int code = run_realization(scene_, plan_, seed, threads_per_run_, frames_, pipe_fds[1]);
