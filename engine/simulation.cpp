@@ -21,6 +21,7 @@
 #include "engine/report/run_summary.hpp"
 #include "engine/solver/linear_system.hpp"
 #include "engine/time/integrator.hpp"
+#include "engine/time/onset_cuts.hpp"
 #include "engine/time/rotation_correction.hpp"
 #include "engine/time/snap_back.hpp"
 #include "engine/time/step_control.hpp"
@@ -44,10 +45,17 @@ constexpr int kMaxRelaxationDoublings = 2;
 /// Rotation (rad) an element may turn before the stiffness is reassembled in its new frame.
 constexpr double kFrameTolerance = 1e-3;
 
-/// Cuts of one step back to its first onset before it goes on with the onset it has: each cut
-/// lands within the damage band for a straight response, so more are needed only where
-/// contacts or co-rotation bend the path.
-constexpr int kMaxOnsetCuts = 8;
+/// The onset ratio above which a step counts as having passed an onset: an onset is located to
+/// within what the state is known to, the damage band and the growth tolerance to which a
+/// step's moduli settle.
+double onset_tolerance(const FractureSpec& fracture) {
+  return 1.0 + std::max(fracture.damage_band, fracture.growth_tolerance);
+}
+
+/// The onset ratio a step that passed an onset is cut back to: half way into the tolerance.
+double onset_target(const FractureSpec& fracture) {
+  return 0.5 * (1.0 + onset_tolerance(fracture));
+}
 
 /// Run length: `end`, or `steps` x dt, or one step of 1 s in a static scene without [time].
 double end_time_of(const Scene& scene) {
@@ -166,20 +174,21 @@ RunResult Simulation::run(const RunOptions& options) {
   double t = 0.0;
   bool frame_written = false;      // the failing step's frame is already out
   bool onset_damage_next = false;  // the last step ended at an onset: its damage runs now
+  bool stood = false;  // the last step had no length and located no onset: it settled one
   const long planned = std::lround(end_time / scene_.time.dt);
   RunStats& counters = report_.counters;
   try {
     while (t < end_time * (1.0 - 1e-12)) {
       const long step = counters.steps + 1;
       double dt = onset_damage_next ? 0.0 : control.step_to(end_time - t);
-      for (int retries = 0, cuts = 0;;) {
+      OnsetCuts cuts(onset_target(scene_.fracture), !stood);
+      for (int retries = 0;;) {
         const Attempt attempt =
             attempt_step(step, retries, t, dt, load_factor(analysis_, t + dt, end_time), control,
-                         cuts < kMaxOnsetCuts);
+                         cuts.may_cut(), onset_damage_next);
         if (attempt == Attempt::accepted) break;
         if (attempt == Attempt::cut_at_onset) {
-          dt *= trial_.onset_fraction;
-          ++cuts;
+          dt = cuts.next(dt, trial_.onset_fraction, trial_.onset_largest, trial_.damage_passes > 0);
           ++counters.onset_cuts;
           continue;
         }
@@ -187,6 +196,7 @@ RunResult Simulation::run(const RunOptions& options) {
         ++counters.redone_steps;
         dt = control.step_to(end_time - t);
       }
+      stood = dt == 0.0 && !onset_damage_next;
       onset_damage_next = trial_.onset_located;
       if (onset_damage_next) {
         ++counters.located_onsets;
@@ -276,8 +286,8 @@ double Simulation::inertia_step(double dt) const {
 }
 
 Simulation::Attempt Simulation::attempt_step(long step, int retries, double time, double dt,
-                                             double load_factor, StepControl& control,
-                                             bool may_cut) {
+                                             double load_factor, StepControl& control, bool may_cut,
+                                             bool onset_at_start) {
   const std::size_t num_dofs = model_.X.size();
   begin_attempt(time + dt, load_factor);
   if (on_attempt_) on_attempt_(AttemptReport{step, retries, dt}, model_);
@@ -343,11 +353,7 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
       scene_.fracture.locate_onsets && analysis_ != Analysis::dynamic && dt > 0.0;
   // The damage of an onset the last step located runs where it was located: from the
   // committed state, before any solve (which would first settle the growth that step left).
-  const bool located_onset_damage = damage_ && dt == 0.0;
-  // An onset is located to within what the state is known to: the damage band, and the
-  // growth tolerance to which a step's moduli settle.
-  const double located_within =
-      std::max(scene_.fracture.damage_band, scene_.fracture.growth_tolerance);
+  const bool located_onset_damage = damage_ && onset_at_start;
   bool factor_current = false;  // a folded damage pass left the factor holding the next system
   for (int pass = 1;; ++pass) {
     if (!(pass == 1 && located_onset_damage) &&
@@ -361,9 +367,10 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
     // first solve passes already is cut back to at once, before any growth is settled.
     if (pass == 1 && locate_onsets && may_cut) {
       const OnsetSearch onset = damage_->locate_onset(model_, committed_.strain, committed_.stress,
-                                                      1.0 + 0.5 * located_within);
-      if (onset.largest > 1.0 + located_within && onset.fraction) {
+                                                      onset_target(scene_.fracture));
+      if (onset.largest > onset_tolerance(scene_.fracture) && onset.fraction) {
         trial_.onset_fraction = *onset.fraction;
+        trial_.onset_largest = onset.largest;
         return Attempt::cut_at_onset;
       }
     }
@@ -383,9 +390,10 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
                                change.largest_growth > scene_.fracture.growth_tolerance;
     if (locate_onsets && !settle_growth) {
       const OnsetSearch onset = damage_->locate_onset(model_, committed_.strain, committed_.stress,
-                                                      1.0 + 0.5 * located_within);
-      if (onset.largest > 1.0 + located_within && onset.fraction && may_cut) {
+                                                      onset_target(scene_.fracture));
+      if (onset.largest > onset_tolerance(scene_.fracture) && onset.fraction && may_cut) {
         trial_.onset_fraction = *onset.fraction;
+        trial_.onset_largest = onset.largest;
         return Attempt::cut_at_onset;
       }
       trial_.onset_located = onset.largest >= 1.0;

@@ -104,15 +104,17 @@ class Simulation {
   enum class Attempt {
     accepted,
     rejected,      // redo with the step control's smaller dt
-    cut_at_onset,  // redo with dt x trial_.onset_fraction: it passed an undamaged element's onset
+    cut_at_onset,  // redo shorter (OnsetCuts): it passed an undamaged element's onset
   };
 
   // The attempt (simulation.cpp).
-  /// One step attempt of length dt (0: the damage of the onset the last step located) from
-  /// the committed state at `time` (`retries` earlier attempts of this step were rejected).
-  /// `may_cut`: an attempt that passes an onset by more than the damage band is cut back.
+  /// One step attempt of length dt from the committed state at `time` (`retries` earlier
+  /// attempts of this step were rejected). `may_cut`: an attempt that passes an onset by more
+  /// than its tolerance is cut back. `onset_at_start`: the last step located an onset, whose
+  /// damage this attempt (of no length) runs before any solve. A step of no length without it
+  /// settles the last step's damage growth and runs the onsets that settling passes.
   Attempt attempt_step(long step, int retries, double time, double dt, double load_factor,
-                       StepControl& control, bool may_cut);
+                       StepControl& control, bool may_cut, bool onset_at_start);
   /// The step length whose inertia the system carries: dt, but the scene's dt in a
   /// quasi-static analysis, whose mass term only regularises (the velocity resets each step):
   /// cutting a step at an onset, or running an onset's damage in a step of no length, does not

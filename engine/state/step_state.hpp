@@ -48,6 +48,7 @@ struct StepState {
   bool onset_located = false;       // it ends at an undamaged element's onset, whose damage
                                     // runs in the next step, of no length
   double onset_fraction = 1.0;      // when cut: the fraction of it where the first onset lies
+  double onset_largest = 0.0;       // when cut: the largest onset ratio at its end
 
   /// Zeroed arrays for `num_dofs` dofs and `num_equations` equations.
   void resize(std::size_t num_dofs, std::int32_t num_equations);
