@@ -240,8 +240,13 @@ int mpi_monte_carlo(MonteCarloOptions options) {
     return monte_carlo(options, &peers);
   } catch (const std::exception& e) {
     if (!peers.begun()) {
-      peers.begin(false);  // refused before the start (a held lock, another ensemble's folder)
-      throw;
+      // Refused before the start (a held lock, another ensemble's folder). Said before the
+      // other ranks are told to end: once one of them exits 2, mpiexec may stop this rank
+      // before its message is out.
+      const bool input = dynamic_cast<const InputError*>(&e) != nullptr;
+      std::cerr << (input ? "rockdd: error: " : "rockdd: ") << e.what() << std::endl;
+      peers.begin(false);
+      return input ? 2 : 1;
     }
     // Failed midway (a write error, say): the other ranks would wait for seeds that never
     // come. The rows written so far stay, and a rerun resumes from them.
