@@ -316,6 +316,14 @@ std::vector<pid_t> children_of(pid_t parent) {
   return out;
 }
 
+/// The name a process gave itself (PR_SET_NAME), empty once it has gone.
+std::string name_of(pid_t pid) {
+  std::ifstream comm("/proc/" + std::to_string(pid) + "/comm");
+  std::string name;
+  std::getline(comm, name);
+  return name;
+}
+
 /// True while process `pid` runs (a zombie has ended).
 bool running(pid_t pid) {
   std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
@@ -542,9 +550,14 @@ TEST(MonteCarloCommand, AKilledWorkerIsACrashedRowThatTheRerunRunsAgain) {
       "mc " + kScene + " --realizations 2 --first-seed 7 --threads 2 --jobs 1 --out mc" + kCoarse;
   const auto dir = tmp.path() / "mc" / kFolder;
   const pid_t parent = start_rockdd(mc, tmp.path(), tmp.path() / "log");
-  std::vector<pid_t> workers;
-  ASSERT_TRUE(poll_until([&] { return !(workers = children_of(parent)).empty(); }, 60.0));
-  kill(workers.front(), SIGKILL);  // seed 7's worker
+  // The parent first forks a check of the scene: seed 7's worker is the child named for it.
+  pid_t worker = 0;
+  ASSERT_TRUE(poll_until([&] {
+    for (const pid_t child : children_of(parent))
+      if (name_of(child) == "seed 7") worker = child;
+    return worker != 0;
+  }, 60.0));
+  kill(worker, SIGKILL);
   int status = 0;
   waitpid(parent, &status, 0);
   const std::string log = test::read_text(tmp.path() / "log");

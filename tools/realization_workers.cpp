@@ -98,6 +98,7 @@ void check_first_realization(const Scene& scene, const MonteCarloPlan& plan) {
   if (pid == 0) {
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) ::_exit(kCrashed);
+    ::prctl(PR_SET_NAME, "rockdd check");  // told apart from the workers in ps and top
     ::close(pipe_fds[0]);
     int code = kOk;
     try {
@@ -154,6 +155,8 @@ void RealizationWorkers::launch(std::uint64_t seed, const std::vector<int>& clos
     // the next run of the ensemble runs again.
     ::prctl(PR_SET_PDEATHSIG, SIGKILL);
     if (::getppid() != parent) ::_exit(kCrashed);
+    // ps and top show which seed a worker runs (the kernel keeps 15 characters of it).
+    ::prctl(PR_SET_NAME, ("seed " + std::to_string(seed)).c_str());
     ::close(pipe_fds[0]);
     for (const int fd : close_in_child) ::close(fd);
     const int code = run_realization(scene_, plan_, seed, threads_per_run_, frames_, pipe_fds[1]);
