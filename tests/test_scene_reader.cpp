@@ -1,6 +1,6 @@
-// Scene reader: the SCENE.md example read field by field, defaults, --set overrides, and
-// every malformed scene of tests/scenes/bad/ (listed in its CASES.md) rejected with the
-// right key path, message and file:line.
+// Scene reader: the scene contract's example (tests/scenes/good/full.toml) read field by field,
+// defaults, --set overrides, and every malformed scene of tests/scenes/bad/ (listed in its
+// CASES.md) rejected with the right key path, message and file:line.
 #include <gtest/gtest.h>
 
 #include <algorithm>

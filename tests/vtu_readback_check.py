@@ -9,7 +9,8 @@ with vtkXMLUnstructuredGridReader and checks: the arrays and their component nam
 xx, yy, xy; principal s1, s3; strain xx, yy, gamma_xy; vectors x, y, z); that VTK's values
 equal tools/rockdd_results.read_vtu's bit for bit, and the compressed frame's the raw one's;
 that the principal stresses are those of the stress tensor (s1 >= s3, their sum its trace,
-their product its determinant). Prints the two frames' sizes. Exit 0 when every check holds, 1 otherwise.
+their product its determinant). Prints the two frames' sizes. Exit 0 when every check holds,
+1 otherwise, 77 (skipped) without VTK's Python module.
 """
 
 import argparse
@@ -19,8 +20,13 @@ import subprocess
 import sys
 
 import numpy as np
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+try:
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+except ImportError:  # CTest reads 77 as skipped (SKIP_RETURN_CODE)
+    print("skipped: VTK's Python module is not installed (Debian python3-vtk9)")
+    sys.exit(77)
 
 FAILURES = []
 
@@ -52,7 +58,7 @@ def run(rockdd, scene, work, name, compress):
     out = os.path.join(work, name)
     shutil.rmtree(out, ignore_errors=True)
     args = [rockdd, "run", scene, "--quiet", "--threads", "1", "--out", out,
-            "--set", "time.steps=2", "--set", "output.every=1",
+            "--set", "time.end=2e-5", "--set", "output.every=1",
             "--set", 'output.fields=["displacement","velocity","stress","principal","damage",'
                      '"block","material","strain"]',
             "--set", f"output.compress={'true' if compress else 'false'}"]
