@@ -14,15 +14,20 @@
 
 namespace rockdd {
 
-DamageChange Simulation::evaluate_damage() {
+void Simulation::strain_at_result() {
   ScopedTimer timer(report_.timers.damage);
   const std::size_t num_dofs = model_.X.size();
   for (std::size_t d = 0; d < num_dofs; ++d) trial_.positions[d] = model_.u[d] + trial_.du[d];
   compute_internal_force(model_, coloring_, trial_.positions, model_.strain, model_.stress,
                          trial_.damage_force, corotational_);
+}
+
+DamageChange Simulation::evaluate_damage(bool start_onsets) {
+  ScopedTimer timer(report_.timers.damage);
   trial_.damage_before = model_.damage;
-  const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band);
+  const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band, start_onsets);
   if (change.grown > 0) {
+    trial_.damage_changed = true;
     system_->invalidate();  // the moduli changed
     // Without carried velocity the pass drops the moduli at its own strain and re-solves from
     // there. A dynamic step instead integrates the whole step with the new moduli, from the
@@ -31,9 +36,41 @@ DamageChange Simulation::evaluate_damage() {
         released_by_damage(model_, trial_.damage_before,
                            analysis_ == Analysis::dynamic ? committed_.strain : model_.strain);
   }
-  if (change.newly_damaged > 0 && !committed_.first_damage && !trial_.first_damage)
-    trial_.first_damage = locate_first_damage(model_, report_.counters.steps + 1, trial_.time);
+  ++trial_.damage_passes;
+  if (change.newly_damaged > 0) {
+    if (!committed_.first_damage && !trial_.first_damage)
+      trial_.first_damage = locate_first_damage(model_, report_.counters.steps + 1, trial_.time);
+    note_damage_events();
+  }
   return change;
+}
+
+void Simulation::note_damage_events() {
+  auto pending = [&](const char* name) {
+    return !committed_.has_event(name) &&
+           std::none_of(trial_.events.begin(), trial_.events.end(),
+                        [&](const EventState& state) { return state.event.name == name; });
+  };
+  std::vector<std::pair<const char*, std::vector<double>>> found;
+  if (pending("first_damage")) found.emplace_back("first_damage", std::vector<double>{});
+  if (pending("first_separation"))
+    if (std::vector<double> parts = damage_->separation().separated_parts(model_); !parts.empty())
+      found.emplace_back("first_separation", std::move(parts));
+  for (auto& [name, parts] : found) {
+    EventState state{{name,
+                      report_.counters.steps + 1,
+                      trial_.damage_passes,
+                      trial_.time,
+                      0,
+                      std::move(parts),
+                      {}},
+                     model_};
+    state.event.damaged_elements = static_cast<std::int32_t>(
+        std::count_if(model_.damage.begin(), model_.damage.end(), [](double w) { return w > 0; }));
+    // The frame shows the pass's solution, where its strains and damage stand.
+    for (std::size_t d = 0; d < model_.u.size(); ++d) state.model.u[d] += trial_.du[d];
+    trial_.events.push_back(std::move(state));
+  }
 }
 
 void Simulation::record_first_reaction() {

@@ -44,6 +44,11 @@ constexpr int kMaxRelaxationDoublings = 2;
 /// Rotation (rad) an element may turn before the stiffness is reassembled in its new frame.
 constexpr double kFrameTolerance = 1e-3;
 
+/// Cuts of one step back to its first onset before it goes on with the onset it has: each cut
+/// lands within the damage band for a straight response, so more are needed only where
+/// contacts or co-rotation bend the path.
+constexpr int kMaxOnsetCuts = 8;
+
 /// Run length: `end`, or `steps` x dt, or one step of 1 s in a static scene without [time].
 double end_time_of(const Scene& scene) {
   if (scene.time.end) return *scene.time.end;
@@ -159,20 +164,41 @@ RunResult Simulation::run(const RunOptions& options) {
 
   RunResult result;
   double t = 0.0;
-  bool frame_written = false;  // the failing step's frame is already out
+  bool frame_written = false;      // the failing step's frame is already out
+  bool onset_damage_next = false;  // the last step ended at an onset: its damage runs now
   const long planned = std::lround(end_time / scene_.time.dt);
   RunStats& counters = report_.counters;
   try {
     while (t < end_time * (1.0 - 1e-12)) {
       const long step = counters.steps + 1;
-      double dt = control.step_to(end_time - t);
-      for (int retries = 0;
-           !attempt_step(step, retries, t, dt, load_factor(analysis_, t + dt, end_time), control);
-           ++retries) {
+      double dt = onset_damage_next ? 0.0 : control.step_to(end_time - t);
+      for (int retries = 0, cuts = 0;;) {
+        const Attempt attempt =
+            attempt_step(step, retries, t, dt, load_factor(analysis_, t + dt, end_time), control,
+                         cuts < kMaxOnsetCuts);
+        if (attempt == Attempt::accepted) break;
+        if (attempt == Attempt::cut_at_onset) {
+          dt *= trial_.onset_fraction;
+          ++cuts;
+          ++counters.onset_cuts;
+          continue;
+        }
+        ++retries;
         ++counters.redone_steps;
         dt = control.step_to(end_time - t);
       }
+      onset_damage_next = trial_.onset_located;
+      if (onset_damage_next) {
+        ++counters.located_onsets;
+        control.restart_growth();
+      }
       commit_step(dt);
+      for (EventState& state : trial_.events) {
+        if (outputs) state.event.frame = outputs->event_frame(state.model, state.event.name);
+        if (options.on_event) options.on_event(state.event, state.model);
+        committed_.events.push_back(std::move(state.event));
+      }
+      trial_.events.clear();
       // A detachment that ends the run (a static specimen that failed) still leaves the
       // committed step in history.csv and its frame.
       std::optional<RunFailure> fracture_failure;
@@ -185,7 +211,7 @@ RunResult Simulation::run(const RunOptions& options) {
       record_committed_state(detached);
       t += dt;
       counters.steps = step;
-      control.accept(true);
+      if (dt > 0.0) control.accept(!trial_.damage_changed && !onset_damage_next);
       const StepReport report{step, t, dt, end_time, planned};
       if (!fracture_failure && options.keep_going && !options.keep_going(report, model_))
         report_.stopped_by_caller = true;
@@ -245,8 +271,13 @@ void Simulation::begin_attempt(double time, double load_factor) {
   system_->drop_folded_changes();
 }
 
-bool Simulation::attempt_step(long step, int retries, double time, double dt, double load_factor,
-                              StepControl& control) {
+double Simulation::inertia_step(double dt) const {
+  return analysis_ == Analysis::quasi_static ? scene_.time.dt : dt;
+}
+
+Simulation::Attempt Simulation::attempt_step(long step, int retries, double time, double dt,
+                                             double load_factor, StepControl& control,
+                                             bool may_cut) {
   const std::size_t num_dofs = model_.X.size();
   begin_attempt(time + dt, load_factor);
   if (on_attempt_) on_attempt_(AttemptReport{step, retries, dt}, model_);
@@ -267,7 +298,7 @@ bool Simulation::attempt_step(long step, int retries, double time, double dt, do
     update_element_rotations(model_, model_.u);
     system_->invalidate();
   }
-  const InertiaTerms inertia = inertia_terms(analysis_, integrator_, dt);
+  const InertiaTerms inertia = inertia_terms(analysis_, integrator_, inertia_step(dt));
   prepare_system(inertia.mass_coefficient);
 
   for (std::size_t d = 0; d < num_dofs; ++d) {
@@ -300,25 +331,70 @@ bool Simulation::attempt_step(long step, int retries, double time, double dt, do
     for (std::size_t d = 0; d < num_dofs; ++d)
       trial_.positions_settled[d] = model_.X[d] + model_.u[d];
   }
+  // Onsets are located in steps without inertia (with inertia the step follows the waves):
+  // a step whose first solve carries an undamaged element past its onset by more than the
+  // damage band is cut back to where the first one reaches it (within the band), and a step
+  // that ends there commits without damage; the next step, of no length, runs that damage at
+  // the same displacement. So the state at the onset is a history row, and no damage runs at
+  // a displacement that only the step's length chose.
+  // While onsets are located, a pass grows the damage of elements already damaged but starts
+  // none; once that growth has settled, the onsets are sought in the settled state.
+  const bool locate_onsets =
+      scene_.fracture.locate_onsets && analysis_ != Analysis::dynamic && dt > 0.0;
+  // The damage of an onset the last step located runs where it was located: from the
+  // committed state, before any solve (which would first settle the growth that step left).
+  const bool located_onset_damage = damage_ && dt == 0.0;
+  // An onset is located to within what the state is known to: the damage band, and the
+  // growth tolerance to which a step's moduli settle.
+  const double located_within =
+      std::max(scene_.fracture.damage_band, scene_.fracture.growth_tolerance);
   bool factor_current = false;  // a folded damage pass left the factor holding the next system
   for (int pass = 1;; ++pass) {
-    if (!open_close_iteration(step, retries, dt, control, factor_current)) return false;
+    if (!(pass == 1 && located_onset_damage) &&
+        !open_close_iteration(step, retries, inertia, control, factor_current))
+      return Attempt::rejected;
     factor_current = false;
     if (!damage_) break;
     const double released_before = trial_.energy.damage;
-    const DamageChange change = evaluate_damage();
+    strain_at_result();
+    // Softening of elements already damaged only loads the others further: an onset that the
+    // first solve passes already is cut back to at once, before any growth is settled.
+    if (pass == 1 && locate_onsets && may_cut) {
+      const OnsetSearch onset = damage_->locate_onset(model_, committed_.strain, committed_.stress,
+                                                      1.0 + 0.5 * located_within);
+      if (onset.largest > 1.0 + located_within && onset.fraction) {
+        trial_.onset_fraction = *onset.fraction;
+        return Attempt::cut_at_onset;
+      }
+    }
+    const DamageChange change = evaluate_damage(!locate_onsets);
     // Without inertia the boundaries move in the first solve only; the cascade after it runs
     // at fixed boundaries, so the step's work is done at the first solve's reactions.
     if (pass == 1 && count_snap_back) record_first_reaction();
     if (count_snap_back)
       settled_energy =
           measure_snap_back(pass, settle_start, change, released_before, settled_energy);
-    // The last pass's modulus drop is not re-solved: the next step starts from it.
+    // The last pass's modulus drop is not re-solved: the next step starts from it. Without
+    // inertia a pass that only grew damage is re-solved while that growth exceeds
+    // fracture.growth_tolerance: a step's end would otherwise carry moduli older than its
+    // strain, too stiff by what the step's length alone decided.
     trial_.end_out_of_balance = change.grown > 0;
-    if (change.newly_damaged == 0) break;
+    const bool settle_growth = count_snap_back && scene_.fracture.growth_tolerance > 0.0 &&
+                               change.largest_growth > scene_.fracture.growth_tolerance;
+    if (locate_onsets && !settle_growth) {
+      const OnsetSearch onset = damage_->locate_onset(model_, committed_.strain, committed_.stress,
+                                                      1.0 + 0.5 * located_within);
+      if (onset.largest > 1.0 + located_within && onset.fraction && may_cut) {
+        trial_.onset_fraction = *onset.fraction;
+        return Attempt::cut_at_onset;
+      }
+      trial_.onset_located = onset.largest >= 1.0;
+      break;
+    }
+    if (change.newly_damaged == 0 && !settle_growth) break;
     // With snap_back = "dynamic" the cascade goes on with inertia from here, in the steps
     // after this one.
-    if (cascade_calls_for_inertia(scene_.fracture, analysis_, pass)) {
+    if (change.newly_damaged > 0 && cascade_calls_for_inertia(scene_.fracture, analysis_, pass)) {
       trial_.calls_for_inertia = true;
       break;
     }
@@ -329,11 +405,11 @@ bool Simulation::attempt_step(long step, int retries, double time, double dt, do
     ++report_.counters.damage_iterations;
     factor_current = prepare_next_pass(inertia.mass_coefficient, change.grown > 0);
   }
-  return increment_acceptable(step, control);
+  return increment_acceptable(step, control) ? Attempt::accepted : Attempt::rejected;
 }
 
-bool Simulation::open_close_iteration(long step, int retries, double dt, StepControl& control,
-                                      bool factor_current) {
+bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms& inertia,
+                                      StepControl& control, bool factor_current) {
   const std::size_t num_dofs = model_.X.size();
   RunStats& counters = report_.counters;
   // The open-close iteration (a single solve without contacts): assume states, solve, check.
@@ -344,7 +420,7 @@ bool Simulation::open_close_iteration(long step, int retries, double dt, StepCon
   // updates in the last iteration, or moduli folded in by the last damage pass).
   while (true) {
     ++iterations;
-    solve_iteration(step, dt, factor_current);
+    solve_iteration(step, inertia, factor_current);
     if (!contact_) break;
     double penetration = 0.0;
     int changes = 0;
@@ -388,8 +464,7 @@ bool Simulation::open_close_iteration(long step, int retries, double dt, StepCon
   return true;
 }
 
-void Simulation::solve_iteration(long step, double dt, bool factor_current) {
-  const InertiaTerms inertia = inertia_terms(analysis_, integrator_, dt);
+void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool factor_current) {
   const std::size_t num_dofs = model_.X.size();
   if (contact_) {
     {

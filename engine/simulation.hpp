@@ -33,6 +33,7 @@ struct SolverStats;
 struct DamageChange;
 struct EnergyBalance;
 struct RunResult;  // engine/report/run_result.hpp
+struct InertiaTerms;
 
 /// What an observer sees after each committed step.
 struct StepReport {
@@ -63,6 +64,9 @@ struct RunOptions {
   /// with that step's frame written (a caller's own end condition; summary.json then says
   /// "stopped_by_caller": true).
   std::function<bool(const StepReport&, const Model&)> keep_going;
+  /// Called as a step commits, for each run event of its damage passes (the first damage, the
+  /// first separation into parts), with the model as that pass left it.
+  std::function<void(const RunEvent&, const Model&)> on_event;
   /// What came before the Simulation (scene, meshing, model), as its caller measured it; with
   /// it, summary.json's timers account for the whole process.
   std::optional<SetupReport> setup;
@@ -96,21 +100,34 @@ class Simulation {
   const StageTimers& timers() const { return report_.timers; }
 
  private:
+  /// How a step attempt ended.
+  enum class Attempt {
+    accepted,
+    rejected,      // redo with the step control's smaller dt
+    cut_at_onset,  // redo with dt x trial_.onset_fraction: it passed an undamaged element's onset
+  };
+
   // The attempt (simulation.cpp).
-  /// One step attempt of length dt from the committed state at `time` (`retries` earlier
-  /// attempts of this step were rejected); false when it must be redone.
-  bool attempt_step(long step, int retries, double time, double dt, double load_factor,
-                    StepControl& control);
+  /// One step attempt of length dt (0: the damage of the onset the last step located) from
+  /// the committed state at `time` (`retries` earlier attempts of this step were rejected).
+  /// `may_cut`: an attempt that passes an onset by more than the damage band is cut back.
+  Attempt attempt_step(long step, int retries, double time, double dt, double load_factor,
+                       StepControl& control, bool may_cut);
+  /// The step length whose inertia the system carries: dt, but the scene's dt in a
+  /// quasi-static analysis, whose mass term only regularises (the velocity resets each step):
+  /// cutting a step at an onset, or running an onset's damage in a step of no length, does not
+  /// stiffen it.
+  double inertia_step(double dt) const;
   /// The model's working fields, the restraint and the trial state as the attempt starts:
   /// the committed state's, whatever an earlier attempt left.
   void begin_attempt(double time, double load_factor);
   /// The open-close iteration of one step from the trial state; false when it did not settle.
   /// `factor_current`: the factor already holds this step's system (a folded damage pass).
-  bool open_close_iteration(long step, int retries, double dt, StepControl& control,
-                            bool factor_current);
+  bool open_close_iteration(long step, int retries, const InertiaTerms& inertia,
+                            StepControl& control, bool factor_current);
   /// One solve of the open-close iteration: contact springs, factorization (unless
   /// `factor_current`), solve; fills the trial's du.
-  void solve_iteration(long step, double dt, bool factor_current);
+  void solve_iteration(long step, const InertiaTerms& inertia, bool factor_current);
   /// The step's largest displacement increment within the scene's limit and the contact
   /// search distance; otherwise the step is rejected (dt halved) and false returned.
   bool increment_acceptable(long step, StepControl& control);
@@ -121,8 +138,14 @@ class Simulation {
   void rebuild_layout();
 
   // The damage iteration of an attempt (damage_iteration.cpp).
-  /// Damage laws at the step's result u + du; moduli marked stale when damage grew.
-  DamageChange evaluate_damage();
+  /// Strain and stress (into the model) and f_int at the step's result u + du.
+  void strain_at_result();
+  /// Damage laws at the strain and stress strain_at_result() left; moduli marked stale when
+  /// damage grew. Without `start_onsets` only elements already damaged change.
+  DamageChange evaluate_damage(bool start_onsets);
+  /// Adds to the attempt the run events its last damage pass brought (first damage, first
+  /// separation), each with a copy of the model at the pass.
+  void note_damage_events();
   /// Fills the trial's reaction_first: the constraints' force at the first solve of the step.
   void record_first_reaction();
   /// Without inertia, after damage pass `pass`: books the energy the rock gave up between the

@@ -41,7 +41,7 @@ test::SceneRun run_file(const std::filesystem::path& file,
   RunOptions options;
   options.out_root = out;
   options.threads = threads;
-  test::SceneRun run{{}, sim.run(options), {}};
+  test::SceneRun run{{}, sim.run(options), {}, {}};
   run.history = test::read_csv(out / scene.name / "history.csv");
   return run;
 }

@@ -9,6 +9,8 @@
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <tuple>
+#include <utility>
 #include <vector>
 
 #include "test_support.hpp"
@@ -114,7 +116,26 @@ struct DiskSplit {
   long first_damage_step = 0;
   long inertia_step = 0;  // summary snap_back_inertia: the last quasi-static step, its dt
   double inertia_dt = 0.0;
+  // At the split (summary events.first_separation: the first damage pass after which the
+  // undamaged elements form two parts of >= 10 % of the area each).
+  bool split = false;
+  std::vector<double> split_parts;  // the parts' areas, largest first (m^2)
+  int split_damaged = 0;
+  double split_near_diameter = 0.0;  // share of the damaged elements within 0.2 R of x = 0
+  bool split_frame = false;          // its frame was written
 };
+
+/// Share of the damaged elements of `model` whose reference centroid lies within 0.2 R of the
+/// loaded diameter, and their number.
+std::pair<double, int> damage_near_diameter(const Model& model) {
+  int damaged = 0, near = 0;
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+    if (model.damage[e] <= 0.0) continue;
+    ++damaged;
+    near += std::abs(reference_centroid(model, e)[0]) <= 0.2 * kRadius;
+  }
+  return {damaged > 0 ? static_cast<double>(near) / damaged : 0.0, damaged};
+}
 
 DiskSplit run_displacement_disk(const std::vector<std::string>& overrides) {
   const auto run = test::run_data_scene("brazilian_disk_displacement.toml", overrides, 1);
@@ -143,6 +164,16 @@ DiskSplit run_displacement_disk(const std::vector<std::string>& overrides) {
   if (summary.contains("snap_back_inertia") && summary.at("snap_back_inertia").is_object()) {
     split.inertia_step = summary.at("snap_back_inertia").at("step").get<long>();
     split.inertia_dt = summary.at("snap_back_inertia").at("dt").get<double>();
+  }
+  if (summary.at("events").contains("first_separation") &&
+      run.at_event.contains("first_separation")) {
+    const auto& event = summary.at("events").at("first_separation");
+    split.split = true;
+    split.split_parts = event.at("part_areas").get<std::vector<double>>();
+    std::tie(split.split_near_diameter, split.split_damaged) =
+        damage_near_diameter(run.at_event.at("first_separation"));
+    EXPECT_EQ(event.at("damaged_elements").get<int>(), split.split_damaged);
+    split.split_frame = event.at("frame").is_string();
   }
   const Model& model = run.model;
   std::vector<double> x_sum(static_cast<std::size_t>(model.num_blocks), 0.0);
@@ -178,15 +209,18 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
   // Flattened disk (R = 25 mm, 2 alpha = 20 deg, ft = 2 MPa, homogeneous, tension damage),
   // platen at 0.1 mm/s, quasi-static, to a 90 % load drop (data/brazilian_disk_displacement).
   // Peak: Huang et al. (paper eq. 15), P / (pi R t) = ft / (3 cos alpha - 2 alpha / sin alpha)
-  // = 2.118 MPa, within 5 %. After the peak the load falls by more than 90 %, and the disk
-  // ends as two large blocks (> 10 % of the elements each), one each side of the loaded
-  // diameter, within 25 % of each other in size. The same at dt / 2 and at h / sqrt(2).
-  // Measured (h, dt/2, h/sqrt2): peak 2.153, 2.153, 2.146 MPa (+1.6, +1.6, +1.3 %); load to
-  // 0.0, 0.1, 0.0 % of the peak; damaged elements within 0.2 R of the diameter 75, 74, 54 %.
-  // That share is short of the 80 % issue 11 asks: once the main crack is through, the halves,
-  // still pressed by the platens, crack again 6-10 mm off the diameter within the same step
-  // (docs/convergence.md). It is held here at >= 50 %, so that a change that spreads damage
-  // further shows.
+  // = 2.118 MPa, within 5 %. The crack is judged at the split (issue 26): the first damage
+  // pass after which the undamaged elements form two parts of >= 10 % of the area each
+  // (summary.json events.first_separation, with its frame events/first_separation.vtu). There
+  // the disk is in two halves within 25 % of each other in area. The same at dt / 2 and at
+  // h / sqrt(2). Measured (h, dt/2, h/sqrt2): peak 2.157, 2.157, 2.148 MPa (+1.8, +1.8, +1.4 %);
+  // halves 940 / 936, 939 / 935, 918 / 907 mm^2; of the damaged elements at the split 74.6 %
+  // (of 134), 73.7 % (137) and 51.5 % (406) lie within 0.2 R of the diameter. That share is
+  // short of the 80 % issue 11 asks: the first damage is at a flat's edge (x = -5.4 mm,
+  // y = 23.8 mm, the contact's stress concentration), and damage under the flats grows with
+  // the crack within the same held cascade (docs/convergence.md). It is held here at >= 50 %,
+  // so that a change that spreads damage further shows; the dynamic snap-back reaches 92 %
+  // (the next test).
   // Energy: at every step the work done equals strain + kinetic energy + damage and friction
   // dissipation + the snap-back energy (released as the disk re-settles after each damage
   // event at fixed platens, measured as the fall of the stored energy in that re-solve), to
@@ -199,12 +233,11 @@ TEST(BrazilianDisk, DisplacementControlPeaksAtHuangsStrengthAndSplitsInTwo) {
     SCOPED_TRACE(overrides.empty() ? std::string("scene as is") : overrides[0]);
     const DiskSplit split = run_displacement_disk(overrides);
     EXPECT_NEAR(split.peak_strength, huang, 0.05 * huang);
-    EXPECT_LT(split.final_over_peak, 0.1);
-    ASSERT_EQ(split.large_block_x.size(), 2u);
-    EXPECT_LT(split.large_block_x[0] * split.large_block_x[1], 0.0) << "both on one side";
-    const double a = split.large_block_size[0], b = split.large_block_size[1];
-    EXPECT_LT(std::abs(a - b), 0.25 * std::max(a, b));
-    EXPECT_GE(split.near_diameter, 0.50) << split.damaged << " damaged";
+    ASSERT_TRUE(split.split) << "the disk never separated";
+    EXPECT_TRUE(split.split_frame);
+    ASSERT_EQ(split.split_parts.size(), 2u);
+    EXPECT_LT(split.split_parts[0] - split.split_parts[1], 0.25 * split.split_parts[0]);
+    EXPECT_GE(split.split_near_diameter, 0.50) << split.split_damaged << " damaged";
     EXPECT_LT(split.energy_gap, 0.02);
     // No re-solve gains energy (a sound one only releases it): snap-back is a release, and a
     // negative term would be energy the scheme created hiding in it. Measured: 0 J.
@@ -218,47 +251,50 @@ TEST(BrazilianDisk, SnapBackFollowedWithInertiaSplitsAlongTheDiameter) {
   // cascade starts (a re-solve after the first damage event finds more), the run goes on with
   // inertia (Newmark) from that state at a quarter of the shortest wave transit time of an
   // element, h_min / sqrt(E / (rho (1 - nu^2))) / 4 in plane stress, here 5.2e-8 s; it stops
-  // at a 95 % load drop. Required: the switch no earlier than the first damage, at that dt;
-  // the peak within 5 % of Huang's 2.118 MPa; the load falls by more than 95 %; two halves,
-  // one each side of the diameter; >= 80 % of the damaged elements within 0.2 R of it; work =
-  // strain + kinetic + dissipated + snap-back + integrator to 2 % at every step, Newmark
-  // damping nothing. Measured: first damage in step 221 (no cascade), switch after step 223,
-  // peak 2.162 MPa (+2.1 %, the dynamic overshoot; 2.154 MPa held), load to 1.5 %,
-  // halves of 1,385 and 1,289 elements, 86.6 % of 493 damaged elements near the diameter
-  // (a band of fragments 4-8 mm wide, not one crack: docs/figures/disk_snap_back_crack.png),
-  // unaccounted -0.6 %. Not a cure for issue 11's 80 %: at dt / 2 the same stop finds 78 %,
-  // at h / sqrt(2) and with snap_back_dt x 1/4 .. x 2 the load has fallen 95 % before the
-  // halves part (84-96 %, one block), and run on, the halves, still held by the flats, shatter
-  // with the released energy (35 % near the diameter 60 us after the split;
-  // docs/method-choices.md, "Damage events").
+  // at a 95 % load drop. Judged at the split (events.first_separation, as above). Required:
+  // the switch no earlier than the first damage, at that dt; the peak within 5 % of Huang's
+  // 2.118 MPa; at the split two halves within 25 % of each other in area and >= 80 % of the
+  // damaged elements within 0.2 R of the diameter; work = strain + kinetic + dissipated +
+  // snap-back + integrator to 2 % at every step, Newmark damping nothing. Measured: first
+  // damage in step 222, peak 2.157 MPa (+1.8 %), halves of 831 and 821 mm^2, 91.8 % of 414
+  // damaged elements near the diameter at the split (86 % of 536 at the 95 % load drop, when
+  // the halves, still held by the flats, have cracked again: docs/method-choices.md, "Damage
+  // events").
   const DiskSplit split =
       run_displacement_disk({"fracture.snap_back=dynamic", "time.stop_at_softening=0.95"});
   EXPECT_GE(split.inertia_step, split.first_damage_step);
   EXPECT_NEAR(split.inertia_dt, 5.246e-8, 0.01 * 5.246e-8);
   EXPECT_NEAR(split.peak_strength, 2.118e6, 0.05 * 2.118e6);
-  EXPECT_LT(split.final_over_peak, 0.05);
-  ASSERT_EQ(split.large_block_x.size(), 2u);
-  EXPECT_LT(split.large_block_x[0] * split.large_block_x[1], 0.0) << "both on one side";
-  EXPECT_GE(split.near_diameter, 0.80) << split.damaged << " damaged";
+  ASSERT_TRUE(split.split) << "the disk never separated";
+  ASSERT_EQ(split.split_parts.size(), 2u);
+  EXPECT_LT(split.split_parts[0] - split.split_parts[1], 0.25 * split.split_parts[0]);
+  EXPECT_GE(split.split_near_diameter, 0.80) << split.split_damaged << " damaged";
   EXPECT_LT(split.energy_gap, 0.02);
   EXPECT_LT(std::abs(split.integrator), 1e-6);
 }
 
 TEST(BrazilianDisk, SnapBackWithInertiaThatOnlyTimeEndWouldEndFailsAtOnce) {
   // Once a cascade is followed with inertia every later step is dynamic: the same scene
-  // without its softening stop would need (0.5 - 0.223) s / 5.2e-8 s = 5.3e6 steps (hours).
-  // Required: the run ends at the switch (step 223) and says why, naming the keys that end it.
+  // without its softening stop would need (0.5 - 0.222) s / 5.2e-8 s = 5.3e6 steps (hours).
+  // Required: the run ends at the switch and says why, naming the keys that end it; the
+  // switch step is the last row of history.csv (measured: step 225, three after the first
+  // damage: the step cut at the onset, the onset's own step, the cascade's).
   std::istringstream file(test::read_text(test::data_file("brazilian_disk_displacement.toml")));
   std::string scene, line;
   while (std::getline(file, line))
     if (line.find("softening") == std::string::npos) scene += line + "\n";
   const auto run = test::run_scene_text(scene, {"fracture.snap_back=dynamic"}, 1);
   ASSERT_FALSE(run.result.ok);
-  EXPECT_NE(run.result.reason.find("step 223: a damage cascade is followed with inertia"),
-            std::string::npos)
-      << run.result.reason;
-  EXPECT_NE(run.result.reason.find("time.stop_at_softening"), std::string::npos);
-  EXPECT_EQ(run.history.at("top.fy").size(), 224u);  // steps 0-223: the switch step is recorded
+  const std::string& reason = run.result.reason;
+  const std::string cascade = ": a damage cascade is followed with inertia";
+  ASSERT_NE(reason.find(cascade), std::string::npos) << reason;
+  ASSERT_EQ(reason.rfind("step ", 0), 0u) << reason;
+  const long step = std::stol(reason.substr(5, reason.find(cascade) - 5));
+  EXPECT_NE(reason.find("time.stop_at_softening"), std::string::npos);
+  const long first_damage = run.result.summary.at("first_damage").at("step").get<long>();
+  EXPECT_GE(step, first_damage);
+  EXPECT_LE(step, first_damage + 3);
+  EXPECT_EQ(run.history.at("top.fy").size(), static_cast<std::size_t>(step + 1));
 }
 
 /// The platen force and the largest principal stress of the elastic flattened disk
@@ -425,11 +461,15 @@ TEST(CrackBand, NotchedBarPostPeakDoesNotChangeWithRefinement) {
   // G_f x ligament x thickness = 0.05 J, within 15 % (one crack, whose band is one to two
   // elements wide as it zig-zags through the unstructured mesh); it opens by G_f / (lambda ft)
   // = 25 um on the residual plateau before its last element breaks, so the pull falls below
-  // 5 % of its peak at 25 um of travel, within 10 %. Refinement: the peak within 1 %, the
+  // 5 % of its peak at 25 um of travel, within 10 %. Refinement: the peak within 1.5 %, the
   // plateau pull within 10 % of the coarsest mesh's.
   // Measured (docs/convergence.md): dissipated 0.0437, 0.0527, 0.0562 J; break at 23.7, 24.7,
-  // 25.7 um; peak 10.961, 10.952, 10.944 kN; plateau 2.16, 2.23, 2.34 kN. Without
-  // fracture_energy (ultimate_strain = 5, the paper's law) the bar breaks within 3 um of
+  // 25.7 um; peak 12.331, 12.227, 12.193 kN; plateau 2.16, 2.23, 2.34 kN. The peak is the
+  // located onset at the notch root (issue 26); the notch's stress concentration grows as the
+  // mesh resolves it, so the onset comes 1.1 % sooner at h / 2. (Steps that ran the damage at
+  // their end recorded the pull after it: 10.96 kN on every mesh.) Under the load step the
+  // peak moves 0.006 % from dt x 2 to dt / 4 (CrackBand.NotchedBarPeakDoesNotMoveWithTheLoadStep).
+  // Without fracture_energy (ultimate_strain = 5, the paper's law) the bar breaks within 3 um of
   // travel and dissipates under a quarter of G_f x ligament.
   const double gf = 5.0, ligament = 0.01, opening = gf / (0.1 * 2e6);
   std::vector<BarResponse> bars;
@@ -439,7 +479,7 @@ TEST(CrackBand, NotchedBarPostPeakDoesNotChangeWithRefinement) {
     const BarResponse& bar = bars.back();
     EXPECT_NEAR(bar.dissipated, gf * ligament, 0.15 * gf * ligament);
     EXPECT_NEAR(bar.break_opening, opening, 0.1 * opening);
-    EXPECT_NEAR(bar.peak, bars[0].peak, 0.01 * bars[0].peak);
+    EXPECT_NEAR(bar.peak, bars[0].peak, 0.015 * bars[0].peak);
     EXPECT_NEAR(bar.plateau, bars[0].plateau, 0.1 * bars[0].plateau);
   }
 
@@ -457,6 +497,88 @@ TEST(CrackBand, NotchedBarPostPeakDoesNotChangeWithRefinement) {
   EXPECT_LT(travel.back(), 0.2 * opening);
   EXPECT_LT(brittle.result.summary["energy"]["damage_dissipation"].get<double>(),
             0.25 * gf * ligament);
+}
+
+TEST(CrackBand, NotchedBarPeakDoesNotMoveWithTheLoadStep) {
+  // Issue 26: a step that passes an undamaged element's onset is cut at it (to within the
+  // damage band and fracture.growth_tolerance), and a history row records the state there;
+  // the onset's damage runs in the next step, of no length. The peak is then the physical
+  // one whatever the load step: the notched bar's pull at dt x 2, dt, dt / 2 and dt / 4 (0.5,
+  // 0.25, 0.125 and 0.0625 um of travel a step) within 1 % of each other (measured 12,331.0,
+  // 12,331.4, 12,331.6 and 12,331.7 N: 0.006 %; steps that ran their onsets' damage at their
+  // end recorded 10.96 kN, and the stepped-over onset moved it 9.4 % from dt to dt / 4). The
+  // row of the peak is the onset's: the first damage comes in the next step, at its time.
+  std::vector<double> peaks;
+  for (const char* dt : {"1.0", "0.5", "0.25", "0.125"}) {
+    SCOPED_TRACE(std::string("time.dt=") + dt);
+    const auto run = test::run_data_scene("notched_bar_tension.toml",
+                                          {std::string("time.dt=") + dt, "output.every=0"}, 1);
+    ASSERT_TRUE(run.result.ok) << run.result.reason;
+    const auto& force = run.history.at("right.fx");
+    const auto top = std::max_element(force.begin(), force.end());
+    peaks.push_back(*top);
+    const auto row = static_cast<std::size_t>(top - force.begin());
+    const auto& first = run.result.summary.at("events").at("first_damage");
+    EXPECT_EQ(first.at("step").get<long>(), std::lround(run.history.at("step")[row]) + 1);
+    EXPECT_DOUBLE_EQ(first.at("time").get<double>(), run.history.at("time")[row]);
+    EXPECT_GE(run.result.summary.at("located_onsets").get<long>(), 1);
+  }
+  const auto [low, high] = std::minmax_element(peaks.begin(), peaks.end());
+  EXPECT_LT(*high - *low, 0.01 * *low);
+}
+
+/// The notched beam in three-point bending (data/notched_beam_bending.toml) at one load step.
+struct BeamResponse {
+  double peak = 0.0;          // largest pad force (N)
+  double near_midspan = 0.0;  // share of damaged elements within 5 mm (2 element sizes) of it
+  int damaged = 0;
+  bool separated = false;  // events.first_separation: the crack cut the beam in two
+};
+
+BeamResponse run_notched_beam(const std::string& dt) {
+  const auto run =
+      test::run_data_scene("notched_beam_bending.toml", {"time.dt=" + dt, "output.every=0"}, 1);
+  EXPECT_TRUE(run.result.ok) << run.result.reason;
+  BeamResponse beam;
+  const auto& force = run.history.at("pad.fy");
+  for (const double f : force) beam.peak = std::max(beam.peak, std::abs(f));
+  const Model& model = run.model;
+  int near = 0;
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+    if (model.damage[e] <= 0.0) continue;
+    ++beam.damaged;
+    near += std::abs(reference_centroid(model, e)[0] - 0.1) <= 5e-3;
+  }
+  beam.near_midspan = beam.damaged > 0 ? static_cast<double>(near) / beam.damaged : 0.0;
+  beam.separated = run.result.summary.at("events").contains("first_separation");
+  return beam;
+}
+
+TEST(NotchedBeam, PeakDoesNotMoveWithTheLoadStepAndTheCrackRunsFromTheNotch) {
+  // Issue 26's standard test that no one tuned: a single-edge-notched beam in three-point
+  // bending (200 x 50 mm, span 180 mm, notch 10 mm with a 1 mm round tip, E = 30 GPa,
+  // ft = 3 MPa, the paper's law, tension damage only, elastic ends over the supports), pad
+  // moved down 0.5 um a step, run to a 95 % load drop. Required: at dt x 2, dt, dt / 2 and
+  // dt / 4 the peak pad force within 1 % of each other; >= 80 % of the damaged elements
+  // within two element sizes (5 mm) of midspan; the crack cuts the beam in two
+  // (events.first_separation). Measured: peaks 1,329.6, 1,329.3, 1,329.3, 1,331.8 N
+  // (0.19 %), 60 elements damaged, all within 5 mm of midspan. Run by whole steps
+  // (fracture.locate_onsets = false, growth_tolerance = 0) the peak moves with the load step
+  // (docs/convergence.md, "Notched beam"). Not required here: the energy balance, which
+  // leaves 0.005, 0.001, 2.5 and 3.2 % of the work unaccounted and 8.8 % (at dt) to the
+  // fragment restraint once the crack has cut the beam (issue 30: a broken beam is a
+  // mechanism that the restraint holds).
+  std::vector<double> peaks;
+  for (const char* dt : {"1e-2", "5e-3", "2.5e-3", "1.25e-3"}) {
+    SCOPED_TRACE(std::string("time.dt=") + dt);
+    const BeamResponse beam = run_notched_beam(dt);
+    peaks.push_back(beam.peak);
+    EXPECT_GT(beam.damaged, 0);
+    EXPECT_GE(beam.near_midspan, 0.8) << beam.damaged << " damaged";
+    EXPECT_TRUE(beam.separated);
+  }
+  const auto [low, high] = std::minmax_element(peaks.begin(), peaks.end());
+  EXPECT_LT(*high - *low, 0.01 * *low);
 }
 
 TEST(CrackBand, ElementsTooWideForTheirFractureEnergyAreRefused) {

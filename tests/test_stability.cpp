@@ -541,12 +541,19 @@ TEST(Stability, EveryElementFullyDamagedInOneStep) {
   // 100 x its tensile strength. Measured: every element damages fully in one pass and
   // detaches (32 blocks); under the imposed displacement the right end carries 3 N (the
   // stiffness floor 1e-6 E0); under the force the stiffness floor lets it stretch 800 m
-  // (small strain, as a static analysis is), finite.
+  // (small strain, as a static analysis is), finite. The step is cut at the first onset and
+  // the cascade runs in a step of its own; under the force, the next step would pull the 32
+  // blocks 800 m apart through each other's contact reach, so the run ends there and says why.
   for (const std::string loading : {"[[boundary]]\non = \"right\"\nvelocity_x = 8e-4\n",
                                     "[[load]]\non = \"right\"\nforce = [2e6, 0.0]\n"}) {
     SCOPED_TRACE(loading);
     const auto run = test::run_scene_text(kBeamToBreak + loading);
-    ASSERT_TRUE(run.result.ok) << run.result.reason;
+    const bool force = loading.find("force") != std::string::npos;
+    if (force && !run.result.ok)
+      EXPECT_NE(run.result.reason.find("exceeds the contact search distance"), std::string::npos)
+          << run.result.reason;
+    else
+      ASSERT_TRUE(run.result.ok) << run.result.reason;
     expect_finite(run);
     for (std::int32_t e = 0; e < run.model.num_elements(); ++e)
       EXPECT_EQ(run.model.damage[e], 1.0) << e;

@@ -43,11 +43,13 @@ inline Scene scene_from_text(const std::string& text, const std::filesystem::pat
   return read_scene(file, overrides);
 }
 
-/// What a test run leaves: the final model, the result and history.csv by column.
+/// What a test run leaves: the final model, the result, history.csv by column, and the model
+/// at each run event (first_damage, first_separation).
 struct SceneRun {
   Model model;
   RunResult result;
   std::map<std::string, std::vector<double>> history;
+  std::map<std::string, Model> at_event;
 };
 
 inline std::map<std::string, std::vector<double>> read_csv(const std::filesystem::path& file);
@@ -58,7 +60,11 @@ inline SceneRun run_scene(const Scene& scene, const std::filesystem::path& dir, 
   RunOptions options;
   options.out_root = dir / "out";
   options.threads = threads;
-  SceneRun run{{}, sim.run(options), {}};
+  std::map<std::string, Model> at_event;
+  options.on_event = [&](const RunEvent& event, const Model& model) {
+    at_event.emplace(event.name, model);
+  };
+  SceneRun run{{}, sim.run(options), {}, std::move(at_event)};
   run.model = sim.model();
   run.history = read_csv(dir / "out" / scene.name / "history.csv");
   return run;

@@ -11,7 +11,8 @@
 
 namespace rockdd {
 
-DamageStage::DamageStage(const Scene& scene, const Model& model) : plane_(model.plane) {
+DamageStage::DamageStage(const Scene& scene, const Model& model)
+    : plane_(model.plane), separation_(model) {
   for (const MaterialSpec& m : scene.materials) {
     kernels::DamageParams p;
     p.poisson = m.poisson;
@@ -84,7 +85,65 @@ kernels::DamageParams DamageStage::element_params(const Model& model, std::int32
   return p;
 }
 
-DamageChange DamageStage::evaluate(Model& model, double band) {
+OnsetSearch DamageStage::locate_onset(const Model& model, std::span<const double> strain0,
+                                      std::span<const double> stress0, double target) const {
+  using Range = tbb::blocked_range<std::int32_t>;
+  struct Found {
+    double largest = 0.0;
+    double fraction = 2.0;  // earliest crossing; > 1: none
+    bool at_start = false;  // an element past the target at the step's start
+  };
+  auto ratio_at = [&](std::int32_t e, const kernels::DamageParams& p, double f) {
+    const auto i = 3 * static_cast<std::size_t>(e);
+    if (f == 1.0) return kernels::onset_ratio(&model.strain[i], &model.stress[i], p, plane_, 0.0);
+    double eps[3], sig[3];
+    for (int k = 0; k < 3; ++k) {
+      eps[k] = strain0[i + k] + f * (model.strain[i + k] - strain0[i + k]);
+      sig[k] = stress0[i + k] + f * (model.stress[i + k] - stress0[i + k]);
+    }
+    return kernels::onset_ratio(eps, sig, p, plane_, 0.0);
+  };
+  // Max and min do not depend on the order: the search is the same on any thread count.
+  const Found found = tbb::parallel_reduce(
+      Range(0, model.num_elements(), 1024), Found{},
+      [&](const Range& range, Found top) {
+        for (std::int32_t e = range.begin(); e != range.end(); ++e) {
+          if (!damageable_[static_cast<std::size_t>(model.element_material[e])] ||
+              model.damage[e] > 0.0)
+            continue;
+          const kernels::DamageParams p = element_params(model, e);
+          const double end = ratio_at(e, p, 1.0);
+          top.largest = std::max(top.largest, end);
+          if (end <= target) continue;
+          if (ratio_at(e, p, 0.0) >= target) {
+            top.at_start = true;
+            continue;
+          }
+          // The ratio along the step is continuous: bisection to 2^-52 of the step.
+          double below = 0.0, above = 1.0;
+          for (int k = 0; k < 52 && below < above; ++k) {
+            const double mid = 0.5 * (below + above);
+            (ratio_at(e, p, mid) < target ? below : above) = mid;
+          }
+          top.fraction = std::min(top.fraction, above);
+        }
+        return top;
+      },
+      [](Found a, const Found& b) {
+        a.largest = std::max(a.largest, b.largest);
+        a.fraction = std::min(a.fraction, b.fraction);
+        a.at_start = a.at_start || b.at_start;
+        return a;
+      });
+  OnsetSearch search{found.largest, std::nullopt};
+  if (found.at_start)
+    search.fraction = 0.0;
+  else if (found.fraction <= 1.0)
+    search.fraction = found.fraction;
+  return search;
+}
+
+DamageChange DamageStage::evaluate(Model& model, double band, bool start_onsets) {
   using Range = tbb::blocked_range<std::int32_t>;
   const std::int32_t num_elements = model.num_elements();
   ratio_.assign(static_cast<std::size_t>(num_elements), 0.0);
@@ -113,7 +172,7 @@ DamageChange DamageStage::evaluate(Model& model, double band) {
           const double w_old = model.damage[e];
           // An undamaged element short of its onset cannot start damage (a law fires only at
           // ratio >= 1; the margin covers the ratio's own rounding): most elements, most passes.
-          if (w_old == 0.0 && ratio_[e] < 1.0 - 1e-9) continue;
+          if (w_old == 0.0 && (!start_onsets || ratio_[e] < 1.0 - 1e-9)) continue;
           const auto i = 3 * static_cast<std::size_t>(e);
           const kernels::DamageUpdate update = kernels::evaluate_damage(
               &model.strain[i], &model.stress[i], element_params(model, e), plane_, w_old);
@@ -124,7 +183,11 @@ DamageChange DamageStage::evaluate(Model& model, double band) {
           }
           model.damage[e] = update.w;
           ++change.grown;
-          if (w_old == 0.0) ++change.newly_damaged;
+          if (w_old == 0.0)
+            ++change.newly_damaged;
+          else
+            change.largest_growth =
+                std::max(change.largest_growth, (update.w - w_old) / (1.0 - w_old));
         }
         return change;
       },
@@ -132,6 +195,7 @@ DamageChange DamageStage::evaluate(Model& model, double band) {
         a.newly_damaged += b.newly_damaged;
         a.grown += b.grown;
         a.deferred += b.deferred;
+        a.largest_growth = std::max(a.largest_growth, b.largest_growth);
         return a;
       });
 }

@@ -3,8 +3,11 @@
 // kernels/damage_law.hpp evaluated on every damageable element after a solve. Built only for
 // scenes whose materials give a strength.
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <vector>
 
+#include "engine/damage/separation.hpp"
 #include "engine/model/model.hpp"
 #include "engine/scene/scene.hpp"
 #include "kernels/damage_law.hpp"
@@ -17,6 +20,18 @@ struct DamageChange {
   std::int32_t grown = 0;          // elements whose damage grew
   std::int32_t deferred = 0;       // past their onset but outside the event's band: left for
                                    // the next pass, which may find them unloaded
+  // The largest growth of an element already damaged, (w_new - w_old) / (1 - w_old): the
+  // relative fall of its modulus, and so the relative excess of the stress it carried.
+  double largest_growth = 0.0;
+};
+
+/// Where a step meets its first onset (DamageStage::locate_onset).
+struct OnsetSearch {
+  double largest = 0.0;  // the largest onset ratio of an undamaged element at the step's end
+  // The fraction of the step [0, 1] at which the first undamaged element's ratio reaches the
+  // target, strain and stress taken along the straight path from the step's start (0: one
+  // that passes it stood past it already at the start); unset when none passes it.
+  std::optional<double> fraction;
 };
 
 /// Per-material law parameters, and the evaluation over all elements.
@@ -29,10 +44,23 @@ class DamageStage {
   /// only in the undamaged elements whose onset ratio is within `band` of the largest
   /// (ratio >= max / (1 + band)): a damage event, after which the step is re-solved, so an
   /// element that its neighbours' failure unloads does not fail with them. Deterministic.
-  DamageChange evaluate(Model& model, double band);
+  /// Without `start_onsets`, damage only grows where it has started (onsets are left for the
+  /// caller to locate, DamageStage::locate_onset).
+  DamageChange evaluate(Model& model, double band, bool start_onsets = true);
+
+  /// The undamaged elements' onset ratios at the model's strain and stress (the step's end),
+  /// and where along the step from `strain0` and `stress0` (its start, 3 per element) the
+  /// first of them reaches `target`: each element's crossing by bisection of its ratio along
+  /// the straight path (a linear response is straight), the earliest over all elements.
+  /// Deterministic; leaves the model as it is.
+  OnsetSearch locate_onset(const Model& model, std::span<const double> strain0,
+                           std::span<const double> stress0, double target) const;
 
   /// The damage at which an element detaches, per element (scene's detach_at_damage).
   double detach_threshold(const Model& model, std::int32_t e) const;
+
+  /// The intact parts of the model as it was built (separation.hpp).
+  const SeparationWatch& separation() const { return separation_; }
 
  private:
   /// The law parameters of element e, with its drawn modulus and strengths.
@@ -48,6 +76,7 @@ class DamageStage {
   std::vector<double> fracture_energy_;        // per material: G_f, 0 = no crack band
   kernels::PlaneKind plane_;
   std::vector<double> ratio_;  // per element: onset ratio of an undamaged element, else 0
+  SeparationWatch separation_;
 };
 
 }  // namespace rockdd

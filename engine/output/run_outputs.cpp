@@ -21,13 +21,14 @@ RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
       compress_(scene.output.compress) {
   // Frames and profiles of an earlier run in the same folder would mix with this run's (a
   // longer earlier run leaves frames past this one's end): they are removed first.
-  for (const char* folder : {"frames", "profiles"}) {
+  for (const char* folder : {"frames", "profiles", "events"}) {
     std::error_code ignored;
     if (std::filesystem::is_directory(dir_ / folder, ignored))
       for (const auto& entry : std::filesystem::directory_iterator(dir_ / folder, ignored)) {
         const std::string name = entry.path().filename().string();
         const bool ours = (name.starts_with("frame_") && name.ends_with(".vtu")) ||
-                          (std::string(folder) == "profiles" && name.ends_with(".csv"));
+                          (std::string(folder) == "profiles" && name.ends_with(".csv")) ||
+                          (std::string(folder) == "events" && name.ends_with(".vtu"));
         if (ours) std::filesystem::remove(entry.path(), ignored);
       }
   }
@@ -40,6 +41,10 @@ RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
     std::filesystem::remove(dir_ / "frames.pvd", ignored);
     std::filesystem::remove(dir_ / "frames", ignored);
     std::filesystem::create_directories(dir_);
+  }
+  {
+    std::error_code ignored;
+    std::filesystem::remove(dir_ / "events", ignored);  // only if empty: events come when due
   }
   if (line_probes) std::filesystem::create_directories(dir_ / "profiles");
   history_ = std::make_unique<AtomicFile>(dir_ / "history.csv");
@@ -80,6 +85,14 @@ bool RunOutputs::wants(std::string_view field) const {
   return std::find(fields_.begin(), fields_.end(), field) != fields_.end();
 }
 
+std::string RunOutputs::event_frame(const Model& model, const std::string& event) {
+  if (!write_frames_ || last_frame_only_) return {};  // rockdd mc keeps the last frame only
+  std::filesystem::create_directories(dir_ / "events");
+  const std::string path = "events/" + event + ".vtu";
+  write_arrays(capture(model, 0, 0.0), dir_ / path);
+  return path;
+}
+
 RunOutputs::Frame RunOutputs::capture(const Model& model, long step, double time) const {
   const auto num_nodes = static_cast<std::size_t>(model.num_nodes());
   const auto num_elements = static_cast<std::size_t>(model.num_elements());
@@ -115,7 +128,7 @@ RunOutputs::Frame RunOutputs::capture(const Model& model, long step, double time
   return f;
 }
 
-void RunOutputs::write_frame(const Frame& f) {
+void RunOutputs::write_arrays(const Frame& f, const std::filesystem::path& file) const {
   // Component names: ParaView shows them in its colouring menu (and no meaningless
   // "Magnitude" of a stress tensor's three components is taken for a vector's).
   const std::vector<std::string> xyz{"x", "y", "z"}, tensor{"xx", "yy", "xy"};
@@ -133,11 +146,15 @@ void RunOutputs::write_frame(const Frame& f) {
   if (wants("block")) cell_data.push_back({"block", 1, {}, f.block});
   if (wants("material")) cell_data.push_back({"material", 1, {}, f.material});
 
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%05ld.vtu", f.step);
   VtuEncoding encoding;
   encoding.compress = compress_;
-  write_vtu(dir_ / "frames" / name, f.points, f.triangles, point_data, cell_data, encoding);
+  write_vtu(file, f.points, f.triangles, point_data, cell_data, encoding);
+}
+
+void RunOutputs::write_frame(const Frame& f) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%05ld.vtu", f.step);
+  write_arrays(f, dir_ / "frames" / name);
   frames_.emplace_back(f.time, std::string("frames/") + name);
   write_pvd(dir_ / "frames.pvd", frames_);
 }

@@ -47,6 +47,10 @@ class RunOutputs {
   /// (nothing when frames are off). With the scene's output.last_frame_only (rockdd mc), the
   /// frame is only kept, replacing the one kept before, and finish() writes the last.
   void frame(const Model& model, long step, double time);
+  /// Writes events/<event>.vtu, the state after the damage pass of a run event (not part of
+  /// frames.pvd: it lies inside a step), and returns its path in the run folder; empty when
+  /// frames are off or only the last is kept (output.last_frame_only).
+  std::string event_frame(const Model& model, const std::string& event);
   /// Largest magnitude seen of each probe column.
   const std::map<std::string, double>& peaks() const { return peaks_; }
   /// Run folder.
@@ -72,6 +76,9 @@ class RunOutputs {
   };
   bool wants(std::string_view field) const;  // an output.fields entry
   Frame capture(const Model& model, long step, double time) const;
+  /// Writes `file` with the scene's output fields of `frame`.
+  void write_arrays(const Frame& frame, const std::filesystem::path& file) const;
+  /// Writes frames/frame_<step>.vtu and rewrites frames.pvd.
   void write_frame(const Frame& frame);
 
   std::filesystem::path dir_;

@@ -13,6 +13,9 @@ namespace rockdd {
 struct RunStats {
   long steps = 0;                     // committed steps
   long redone_steps = 0;              // attempts redone with a smaller dt
+  long onset_cuts = 0;                // attempts cut back to the first onset they passed
+  long located_onsets = 0;            // steps that ended at an onset (each followed by one of
+                                      // no length, where that onset's damage runs)
   long dt_changes = 0;                // changes of dt by the step control
   long open_close_iterations = 0;     // over all steps
   long max_open_close_per_step = 0;   // the most one step needed

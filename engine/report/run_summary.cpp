@@ -23,6 +23,8 @@ const char* analysis_name(Analysis a) {
 void write_counters(const RunStats& c, nlohmann::json& s) {
   s["steps"] = c.steps;
   s["redone_steps"] = c.redone_steps;
+  s["onset_cuts"] = c.onset_cuts;
+  s["located_onsets"] = c.located_onsets;
   s["dt_changes"] = c.dt_changes;
   s["open_close_iterations"] = c.open_close_iterations;
   s["max_open_close_per_step"] = c.max_open_close_per_step;
@@ -85,6 +87,18 @@ void write_damage(const RunSummaryInputs& in, nlohmann::json& s) {
         {"x", first->x},       {"y", first->y},       {"spread", first->spread}};
   else
     s["first_damage"] = nullptr;
+  // Moments inside steps (the damage pass after which each first happened), with their frames.
+  nlohmann::json events = nlohmann::json::object();
+  for (const RunEvent& event : in.committed.events) {
+    nlohmann::json& e = events[event.name];
+    e = {{"step", event.step},
+         {"pass", event.pass},
+         {"time", event.time},
+         {"damaged_elements", event.damaged_elements},
+         {"frame", event.frame.empty() ? nlohmann::json(nullptr) : nlohmann::json(event.frame)}};
+    if (event.name == "first_separation") e["part_areas"] = event.parts;
+  }
+  s["events"] = events;
   if (scene.fracture.snap_back == FractureSpec::SnapBack::dynamic) {
     const std::optional<InertiaSwitch>& to = in.report.inertia_switch;
     s["snap_back_inertia"] =

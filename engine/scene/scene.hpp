@@ -134,9 +134,15 @@ struct ProbeSpec {
 /// [fracture]: the numerical devices of damage and fracture (docs/method-choices.md,
 /// "Damage events" and "Fragment restraint"); docs/convergence.md measures each of them.
 struct FractureSpec {
-  double damage_band = 1e-6;         // a damage pass starts damage only in elements within this
-                                     // fraction of the most overstressed one's onset ratio
-  int max_damage_passes = 500;       // damage passes per step before the step goes on regardless
+  double damage_band = 1e-6;    // a damage pass starts damage only in elements within this
+                                // fraction of the most overstressed one's onset ratio
+  int max_damage_passes = 500;  // damage passes per step before the step goes on regardless
+  // Without inertia, a step re-solves while damage that grew in its last pass changed some
+  // element's modulus by more than this fraction: the step ends with the moduli its own
+  // strains call for. 0: a pass without new onsets ends the step.
+  double growth_tolerance = 1e-3;
+  bool locate_onsets = true;         // without inertia: a step that passes an undamaged element's
+                                     // onset is cut at it, and the damage runs in a step of its own
   double fragment_stiffness = 1e-6;  // spring per corner, x E0 t, on blocks no boundary holds,
                                      // in steps without inertia
   double loose_part_support = 1.0;   // x E0 t: the springs of the statically determinate support

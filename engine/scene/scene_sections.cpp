@@ -375,7 +375,7 @@ FractureSpec read_fracture(TableReader& root, bool has_damage, Analysis analysis
   if (!has_damage && !root.has("fracture")) return {};
   TableReader table = optional_table(root, "fracture");
   table.allow_only({"damage_band", "max_damage_passes", "fragment_stiffness", "loose_part_support",
-                    "snap_back", "snap_back_dt"});
+                    "snap_back", "snap_back_dt", "locate_onsets", "growth_tolerance"});
   FractureSpec fracture;
   fracture.damage_band = table.number_or("damage_band", fracture.damage_band, above(0));
   if (auto passes = table.integer("max_damage_passes", 1, 1000000)) {
@@ -399,6 +399,12 @@ FractureSpec read_fracture(TableReader& root, bool has_damage, Analysis analysis
   if (table.has("snap_back_dt") && fracture.snap_back != FractureSpec::SnapBack::dynamic)
     table.fail("snap_back_dt", "expected no snap_back_dt unless snap_back = \"dynamic\"");
   fracture.snap_back_dt = table.number("snap_back_dt", above(0));
+  if (const auto locate = table.boolean("locate_onsets"))
+    fracture.locate_onsets = *locate;
+  else
+    table.record_default("locate_onsets", fracture.locate_onsets ? "true" : "false");
+  fracture.growth_tolerance =
+      table.number_or("growth_tolerance", fracture.growth_tolerance, between(0, true, 1, true));
   return fracture;
 }
 

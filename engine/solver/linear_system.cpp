@@ -98,16 +98,24 @@ void LinearSystem::prepare(const Model& model, const ElementColoring& coloring,
     values_folded_ = false;
   }
   assembled_for_ = mass_coefficient;
+  factored_springs_.reset();
   if (!contact_springs_) factorize();  // else at every open-close iteration, with the springs
 }
 
 void LinearSystem::add_contact_springs(const SlotMatrices& springs, bool factor_current) {
+  if (!factor_current && factored_springs_ && factored_springs_->slot == springs.slot &&
+      factored_springs_->upper == springs.upper)
+    return;  // values_ and the factor are already these
+  factored_springs_.reset();
   std::copy(base_values_.begin(), base_values_.end(), values_.begin());
   for (std::size_t i = 0; i < springs.size(); ++i)
     scatter_element_matrix(layout_, springs.slot[i],
                            &springs.upper[i * static_cast<std::size_t>(kElementUpperEntries)],
                            values_);
-  if (num_equations_ > 0 && !factor_current) factorize();
+  if (num_equations_ > 0 && !factor_current) {
+    factorize();
+    factored_springs_ = springs;
+  }
 }
 
 bool LinearSystem::update_contact_springs(const LowRankTerms& added, const LowRankTerms& removed) {
@@ -116,6 +124,7 @@ bool LinearSystem::update_contact_springs(const LowRankTerms& added, const LowRa
   const std::int64_t columns = added.num_columns() + removed.num_columns();
   if (!factor_updates_ || !solver_.update_expected_faster(columns)) return false;
   try {
+    factored_springs_.reset();  // the factor leaves the values it was factorized from
     if (added.num_columns() > 0) solver_.update(added, true);
     if (removed.num_columns() > 0) solver_.update(removed, false);
     return true;
@@ -134,6 +143,7 @@ bool LinearSystem::fold_modulus_change(const Model& model, std::span<const std::
   modulus_change_terms(model, equation, changed, damage_before, moduli_added_, moduli_removed_);
   const std::int64_t columns = moduli_added_.num_columns() + moduli_removed_.num_columns();
   if (!solver_.update_expected_faster(columns)) return false;
+  factored_springs_.reset();  // the factor leaves the values it was factorized from
   try {
     if (moduli_removed_.num_columns() > 0) solver_.update(moduli_removed_, false);
     if (moduli_added_.num_columns() > 0) solver_.update(moduli_added_, true);
@@ -181,6 +191,7 @@ void LinearSystem::solve(std::span<double> rhs) {
   const double scale = largest_a * largest_x + largest_b;
   if (!(scale > 0.0) || residual <= kTrusted * scale) return;
   ++stats_.untrusted_updated_solves;
+  factored_springs_.reset();
   {
     ScopedTimer refactorization(timers_.factorization);
     solver_.factorize(values_.data());

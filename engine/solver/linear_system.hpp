@@ -58,7 +58,10 @@ class LinearSystem {
   void await_analysis();
 
   /// The moduli, the element frames or the restraint changed: the next prepare() assembles.
-  void invalidate() { assembled_for_.reset(); }
+  void invalidate() {
+    assembled_for_.reset();
+    factored_springs_.reset();
+  }
   /// A step starts from freshly assembled values: folded damage changes do not carry their
   /// round-off from step to step.
   void drop_folded_changes() {
@@ -70,7 +73,9 @@ class LinearSystem {
                std::span<const std::int32_t> equation, double mass_coefficient,
                DiagonalSprings restraint);
   /// K_eff plus the contact springs `springs`; factorized unless `factor_current` (the factor
-  /// already holds exactly this system: updated for the springs that switched, or folded).
+  /// already holds exactly this system: updated for the springs that switched, or folded), or
+  /// unless the factor is that of these very springs on these very base values (an attempt
+  /// redone, or cut back at an onset, with nothing changed: bitwise the same factor).
   void add_contact_springs(const SlotMatrices& springs, bool factor_current);
   /// The springs that switched in an open-close iteration, folded into the factor when an
   /// update is expected to cost less than a factorization. True when the factor now holds
@@ -114,6 +119,8 @@ class LinearSystem {
   std::vector<double> base_values_;      // K + c M + restraint, without contact springs
   std::optional<double> assembled_for_;  // the mass coefficient the values hold; none: stale
   bool values_folded_ = false;           // the values carry folded modulus changes
+  // The contact springs whose sum with the current base values the factor is, when it is.
+  std::optional<SlotMatrices> factored_springs_;
   LowRankTerms moduli_added_, moduli_removed_;
   std::vector<double> check_rhs_, check_residual_;  // the updated-factor check's work arrays
   LinearSystemStats stats_;

@@ -1,5 +1,7 @@
 #include "engine/state/committed_state.hpp"
 
+#include <algorithm>
+
 #include "engine/damage/detachment.hpp"
 
 namespace rockdd {
@@ -11,6 +13,11 @@ void CommittedState::resize(std::size_t num_dofs) {
 void CommittedState::follow_split_nodes(std::span<const std::int32_t> node_origin) {
   for (auto* field : {&f_ext, &reaction, &acceleration})
     rockdd::follow_split_nodes(node_origin, *field);
+}
+
+bool CommittedState::has_event(const std::string& name) const {
+  return std::any_of(events.begin(), events.end(),
+                     [&](const RunEvent& event) { return event.name == name; });
 }
 
 }  // namespace rockdd

@@ -10,6 +10,7 @@
 #include "engine/contact/contact.hpp"
 #include "engine/damage/first_damage.hpp"
 #include "engine/damage/fragment_restraint.hpp"
+#include "engine/damage/run_event.hpp"
 #include "engine/state/energy_account.hpp"
 
 namespace rockdd {
@@ -32,6 +33,10 @@ struct CommittedState {
   FragmentRestraint restraint;
   EnergyAccount energy;
   std::optional<FirstDamage> first_damage;
+  std::vector<RunEvent> events;  // in the order they happened, each name once
+
+  /// Whether the run has had event `name`.
+  bool has_event(const std::string& name) const;
 
   /// Zeroed per-dof arrays for `num_dofs` dofs.
   void resize(std::size_t num_dofs);

@@ -16,7 +16,10 @@ void StepState::begin_attempt(double at_time, double at_load_factor) {
   load_factor = at_load_factor;
   energy = {};
   first_damage.reset();
-  restraint_grown = end_out_of_balance = calls_for_inertia = false;
+  events.clear();
+  damage_passes = 0;
+  restraint_grown = end_out_of_balance = calls_for_inertia = damage_changed = onset_located = false;
+  onset_fraction = 1.0;
 }
 
 void StepState::follow_split_nodes(std::span<const std::int32_t> node_origin) {

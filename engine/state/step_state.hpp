@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "engine/damage/first_damage.hpp"
+#include "engine/damage/run_event.hpp"
 #include "engine/state/energy_account.hpp"
 
 namespace rockdd {
@@ -38,9 +39,15 @@ struct StepState {
   double load_factor = 0.0;                 // of the step attempted
   StepEnergy energy;                        // released by the attempt's damage passes and re-solves
   std::optional<FirstDamage> first_damage;  // the attempt's, when the run had none yet
+  std::vector<EventState> events;           // run events of its damage passes
+  int damage_passes = 0;                    // damage passes of the attempt so far
   bool restraint_grown = false;     // its cascade cut parts loose and the restraint held them
   bool end_out_of_balance = false;  // its last pass dropped moduli and was not re-solved
   bool calls_for_inertia = false;   // its cascade is to go on with inertia (snap_back)
+  bool damage_changed = false;      // a damage pass raised some element's damage
+  bool onset_located = false;       // it ends at an undamaged element's onset, whose damage
+                                    // runs in the next step, of no length
+  double onset_fraction = 1.0;      // when cut: the fraction of it where the first onset lies
 
   /// Zeroed arrays for `num_dofs` dofs and `num_equations` equations.
   void resize(std::size_t num_dofs, std::int32_t num_equations);

@@ -33,7 +33,9 @@ double update_velocity(Analysis analysis, Integrator integrator, double dt,
         a[d] = 0.0;
         break;
       case Analysis::quasi_static:  // the step's mean velocity; the next step starts at rest
-        v[d] = du[d] / dt;
+        // A step of no length (the damage of an onset located at the step before) moves
+        // nodes without time: no velocity, and the next step starts at rest as always.
+        v[d] = dt > 0.0 ? du[d] / dt : 0.0;
         a[d] = 0.0;
         break;
       case Analysis::dynamic: {

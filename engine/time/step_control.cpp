@@ -9,6 +9,7 @@ namespace rockdd {
 
 StepControl::StepControl(const TimeSpec& time)
     : dt_(time.dt),
+      dt_first_(time.dt),
       dt_min_(time.dt_min > 0 ? time.dt_min : time.dt * 1e-6),
       dt_max_(time.dt_max > 0 ? time.dt_max : time.dt),
       max_displacement_(time.max_step_displacement) {}
@@ -31,6 +32,13 @@ void StepControl::accept(bool easy) {
     ++changes_;
     easy_in_a_row_ = 0;
   }
+}
+
+void StepControl::restart_growth() {
+  easy_in_a_row_ = 0;
+  if (dt_ <= dt_first_) return;
+  dt_ = dt_first_;
+  ++changes_;
 }
 
 void StepControl::restart_at(double dt) {

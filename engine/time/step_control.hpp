@@ -22,6 +22,8 @@ class StepControl {
   void reject(long step, const std::string& why);
   /// Records a committed step; grows dt after 10 easy steps in a row.
   void accept(bool easy);
+  /// After a located onset: dt no larger than the scene's first dt, and growth starts over.
+  void restart_growth();
   /// Goes on at `dt` (also the new largest; the smallest 1e-6 of it): a run that changes its
   /// kind of analysis (fracture.snap_back = "dynamic").
   void restart_at(double dt);
@@ -30,7 +32,7 @@ class StepControl {
   long changes() const { return changes_; }
 
  private:
-  double dt_, dt_min_, dt_max_;
+  double dt_, dt_first_, dt_min_, dt_max_;
   std::optional<double> max_displacement_;
   int easy_in_a_row_ = 0;
   long changes_ = 0;
