@@ -1,6 +1,10 @@
 // rockdd.h over the C++ API: every entry catches everything, so no exception reaches C.
 #include "rockdd/rockdd.h"
 
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +18,10 @@ struct rockdd_scene {
 struct rockdd_run {
   rockdd::api::Simulation simulation;
   std::optional<std::string> summary;  // the last run's summary.json
+};
+
+struct rockdd_ensemble {
+  rockdd::api::EnsembleTable table;
 };
 
 namespace {
@@ -157,8 +165,89 @@ const int32_t* rockdd_run_blocks(const rockdd_run* run) {
   return run ? run->simulation.element_blocks().data() : nullptr;
 }
 
+const int32_t* rockdd_run_connectivity(const rockdd_run* run) {
+  return run ? run->simulation.connectivity().data() : nullptr;
+}
+
 const char* rockdd_run_summary_json(const rockdd_run* run) {
   return run && run->summary ? run->summary->c_str() : nullptr;
+}
+
+rockdd_status rockdd_ensemble_run(const rockdd_scene* scene, long realizations,
+                                  const uint64_t* first_seed, const char* out_dir, int threads,
+                                  rockdd_ensemble** out) {
+  return guarded([&] {
+    if (!scene || !out)
+      return bad_argument("rockdd_ensemble_run: scene and out must not be NULL");
+    if (realizations < 1)
+      return bad_argument(("rockdd_ensemble_run: realizations: expected an integer >= 1, got " +
+                           std::to_string(realizations))
+                              .c_str());
+    rockdd::api::RunSettings settings;
+    if (out_dir) settings.out_dir = out_dir;
+    settings.threads = threads;
+    std::optional<std::uint64_t> first;
+    if (first_seed) first = *first_seed;
+    *out = new rockdd_ensemble{
+        rockdd::api::run_ensemble(scene->scene, realizations, first, settings)};
+    return ROCKDD_OK;
+  });
+}
+
+void rockdd_ensemble_free(rockdd_ensemble* ensemble) {
+  delete ensemble;
+}
+
+size_t rockdd_ensemble_num_columns(const rockdd_ensemble* ensemble) {
+  return ensemble ? ensemble->table.columns.size() : 0;
+}
+
+const char* rockdd_ensemble_column(const rockdd_ensemble* ensemble, size_t column) {
+  return ensemble && column < ensemble->table.columns.size()
+             ? ensemble->table.columns[column].c_str()
+             : nullptr;
+}
+
+long rockdd_ensemble_column_index(const rockdd_ensemble* ensemble, const char* name) {
+  if (!ensemble || !name) return -1;
+  const auto& columns = ensemble->table.columns;
+  for (size_t i = 0; i < columns.size(); ++i)
+    if (columns[i] == name) return static_cast<long>(i);
+  return -1;
+}
+
+size_t rockdd_ensemble_num_rows(const rockdd_ensemble* ensemble) {
+  return ensemble ? ensemble->table.rows.size() : 0;
+}
+
+uint64_t rockdd_ensemble_seed(const rockdd_ensemble* ensemble, size_t row) {
+  return ensemble && row < ensemble->table.rows.size() ? ensemble->table.rows[row].seed : 0;
+}
+
+const char* rockdd_ensemble_status(const rockdd_ensemble* ensemble, size_t row) {
+  return ensemble && row < ensemble->table.rows.size()
+             ? ensemble->table.rows[row].status.c_str()
+             : nullptr;
+}
+
+const char* rockdd_ensemble_reason(const rockdd_ensemble* ensemble, size_t row) {
+  return ensemble && row < ensemble->table.rows.size()
+             ? ensemble->table.rows[row].reason.c_str()
+             : nullptr;
+}
+
+const char* rockdd_ensemble_cell(const rockdd_ensemble* ensemble, size_t row, size_t column) {
+  if (!ensemble || row >= ensemble->table.rows.size()) return nullptr;
+  const auto& cells = ensemble->table.rows[row].cells;
+  return column < cells.size() ? cells[column].c_str() : nullptr;
+}
+
+double rockdd_ensemble_value(const rockdd_ensemble* ensemble, size_t row, size_t column) {
+  const char* cell = rockdd_ensemble_cell(ensemble, row, column);
+  if (!cell || *cell == '\0') return std::numeric_limits<double>::quiet_NaN();
+  char* end = nullptr;
+  const double value = std::strtod(cell, &end);
+  return *end == '\0' ? value : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // extern "C"

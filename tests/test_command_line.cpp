@@ -349,7 +349,8 @@ TEST(CommandLine, BadMeshesExitTwoNamingTheMeshKeyAndWriteNothing) {
         << "\"\n[[material]]\ndensity = 2000.0\nyoung = 1e9\npoisson = 0.2\n";
     for (const char* verb : {"run", "check"}) {
       // A time limit: a mesh that ran without limit fails here with 124, not after minutes.
-      const auto inv = rockdd_cli(std::string(verb) + " scene.toml --out out", tmp.path(), 60);
+      const std::string out = std::string(verb) == "run" ? " --out out" : "";  // check writes none
+      const auto inv = rockdd_cli(std::string(verb) + " scene.toml" + out, tmp.path(), 60);
       EXPECT_EQ(inv.exit_code, 2) << verb << ' ' << file << ": " << inv.output;
       EXPECT_NE(inv.output.find("mesh." + kind), std::string::npos) << file << ": " << inv.output;
       if (issue_28.count(file)) {
@@ -431,6 +432,13 @@ TEST(CommandLine, MonteCarloRunsOneRealizationPerSeedAndTabulatesThem) {
   ASSERT_EQ(run.exit_code, 0) << run.output;
   EXPECT_EQ(test::read_text(dir / "seed_8" / "history.csv"),
             test::read_text(tmp.path() / "single/uniaxial-compression/history.csv"));
+  // The realization kept its last frame (issue 31): the run's last frame, bit for bit.
+  const auto summary = nlohmann::json::parse(test::read_text(dir / "seed_8" / "summary.json"));
+  char last[32];
+  std::snprintf(last, sizeof last, "frames/frame_%05ld.vtu", summary["steps"].get<long>());
+  const std::string frame = test::read_text(dir / "seed_8" / last);
+  EXPECT_FALSE(frame.empty()) << last;
+  EXPECT_EQ(frame, test::read_text(tmp.path() / "single/uniaxial-compression" / last));
 }
 
 TEST(CommandLine, MonteCarloNeedsAHeterogeneousScene) {
@@ -459,6 +467,182 @@ TEST(CommandLine, NumericalFailureExitsOneWithTheReason) {
       nlohmann::json::parse(test::read_text(tmp.path() / "out/cantilever-model-1/summary.json"));
   EXPECT_EQ(summary["status"], "failed");
   EXPECT_TRUE(summary.contains("reason"));
+}
+
+// ---------------------------------------------------------------------------------------------
+// Issue 31: each command's help and options, and the progress line.
+
+TEST(CommandLine, EachCommandsHelpListsItsOptionsWithDefaultsAndExitsZero) {
+  test::TempDir tmp;
+  const std::map<std::string, std::vector<std::string>> options = {
+      {"run", {"SCENE", "--out", "--threads", "--set", "--quiet", "--mesh-cache"}},
+      {"check", {"SCENE", "--set", "--mesh-cache"}},
+      {"mc",
+       {"SCENE", "--realizations", "--first-seed", "--threads", "--jobs", "--out", "--shard",
+        "--restart", "--frames", "--no-last-frame", "--set", "--quiet", "--mesh-cache"}},
+      {"mc-merge", {"OUTDIR", "--quiet"}}};
+  for (const auto& [verb, names] : options) {
+    for (const char* flag : {" --help", " -h"}) {
+      SCOPED_TRACE(verb + flag);
+      const auto help = rockdd_cli(verb + flag, tmp.path());
+      EXPECT_EQ(help.exit_code, 0) << help.output;
+      EXPECT_NE(help.output.find("Usage: rockdd " + verb + " [OPTIONS]"), std::string::npos)
+          << help.output;
+      for (const std::string& name : names)
+        EXPECT_NE(help.output.find("  " + name), std::string::npos) << name << "\n" << help.output;
+      EXPECT_NE(help.output.find("Exit status: 0 success"), std::string::npos) << help.output;
+    }
+    // Every option but the positional ones says what it defaults to.
+    const auto help = rockdd_cli(verb + " --help", tmp.path());
+    std::vector<std::string> lines;
+    std::stringstream text(help.output);
+    for (std::string line; std::getline(text, line);) lines.push_back(line);
+    int described = 0;
+    for (std::size_t i = 0; i < lines.size(); ++i)
+      if (lines[i].rfind("  --", 0) == 0 && lines[i].find("--help") == std::string::npos) {
+        std::string option = lines[i];
+        for (std::size_t j = i + 1; j < lines.size() && lines[j].rfind("      ", 0) == 0; ++j)
+          option += lines[j];  // the description's wrapped lines
+        EXPECT_TRUE(option.find("default") != std::string::npos ||
+                    option.find("required") != std::string::npos)
+            << verb << ": " << option;
+        ++described;
+      }
+    EXPECT_GE(described, static_cast<int>(names.size()) - 2) << help.output;
+  }
+  // A help option wins over everything else on the line, and runs nothing.
+  EXPECT_EQ(rockdd_cli("run no_such.toml --out out --help", tmp.path()).exit_code, 0);
+  EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out"));
+}
+
+TEST(CommandLine, AnOptionTheCommandDoesNotTakeIsRefusedNamingIt) {
+  test::TempDir tmp;
+  const std::string scene = " '" + (kSource / "data/cantilever_model_1.toml").string() + "'";
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"check" + scene + " --out out", "rockdd check: unknown option '--out'"},
+      {"check" + scene + " --threads 2", "rockdd check: unknown option '--threads'"},
+      {"check" + scene + " --quiet", "rockdd check: unknown option '--quiet'"},
+      {"run" + scene + " --realizations 2", "rockdd run: unknown option '--realizations'"},
+      {"run" + scene + " --frames", "rockdd run: unknown option '--frames'"},
+      {"run" + scene + " --bogus=3", "rockdd run: unknown option '--bogus'"},
+      {"mc-merge out a b --threads 2", "rockdd mc-merge: unknown option '--threads'"},
+      {"run" + scene + " second.toml", "rockdd run: unexpected argument 'second.toml'"},
+      {"run" + scene + " --threads 0", "rockdd run: --threads expects an integer >= 1, got '0'"},
+      {"mc" + scene + " --realizations 2 --frames --no-last-frame", "--frames excludes"},
+      {"mc" + scene, "rockdd mc: --realizations is required"},
+      {"frobnicate" + scene, "unknown command 'frobnicate'"}};
+  for (const auto& [args, message] : cases) {
+    const auto inv = rockdd_cli(args, tmp.path());
+    EXPECT_EQ(inv.exit_code, 2) << args << ": " << inv.output;
+    EXPECT_NE(inv.output.find(message), std::string::npos) << args << ": " << inv.output;
+    EXPECT_FALSE(std::filesystem::exists(tmp.path() / "out")) << args;
+  }
+  // The refusal lists what the command takes.
+  const auto check = rockdd_cli("check" + scene + " --out out", tmp.path());
+  EXPECT_NE(check.output.find("check takes --set, --mesh-cache"), std::string::npos)
+      << check.output;
+  // Every spelling the README shows still runs: check with --set and --mesh-cache, run with
+  // each of its options, --set=value and the value apart.
+  EXPECT_EQ(rockdd_cli("check" + scene + " --set time.steps=2 --mesh-cache off", tmp.path()).exit_code,
+            0);
+  const auto run = rockdd_cli("run" + scene +
+                                  " --out spelled --threads 1 --set time.steps=2 "
+                                  "--set=output.every=1 --quiet --mesh-cache off",
+                              tmp.path());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output, "");  // --quiet
+  EXPECT_TRUE(std::filesystem::exists(tmp.path() / "spelled/cantilever-model-1/frames/frame_00001.vtu"));
+}
+
+TEST(CommandLine, HelpNamesWhereTheExampleScenesAndTheSceneReferenceAre) {
+  test::TempDir tmp;
+  const auto help = rockdd_cli("--help", tmp.path());
+  EXPECT_EQ(help.exit_code, 0);
+  const std::smatch found = [&] {
+    std::smatch m;
+    std::regex_search(help.output, m, std::regex("every output: (\\S+/docs/scene\\.md)"));
+    return m;
+  }();
+  ASSERT_FALSE(found.empty()) << help.output;
+  EXPECT_TRUE(std::filesystem::is_regular_file(found[1].str())) << found[1];
+  std::smatch scenes;
+  ASSERT_TRUE(std::regex_search(help.output, scenes, std::regex("Example scenes: (\\S+)")));
+  EXPECT_TRUE(std::filesystem::is_regular_file(std::filesystem::path(scenes[1].str()) /
+                                               "uniaxial_compression.toml"))
+      << scenes[1];
+  for (const char* command : {"run", "check", "mc", "mc-merge"})
+    EXPECT_NE(help.output.find(std::string("  ") + command + " "), std::string::npos) << command;
+}
+
+/// The coarse compression specimen (400 elements) that ends on softening at 70 % below its
+/// peak, long before time.end.
+const std::string kSoftening = "run '" + (kSource / "data/uniaxial_compression.toml").string() +
+                               "' --threads 2 --set 'mesh.divisions=[10, 20]' --out out";
+
+TEST(CommandLine, ProgressInALogFollowsTheSofteningEndWithRateAndEta) {
+  // Issue 31: a run that ended on softening at 14.5 % of time.end printed "ETA 102 s" last,
+  // and a log got a line at step 1, one at 4.9 s and none for the next 16 s. Here the lines
+  // come every 0.01 s (ROCKDD_PROGRESS_SECONDS; 10 s by default) besides each tenth of the
+  // run, which takes about 0.4 s.
+  test::TempDir tmp;
+  const auto inv = test::run_shell("cd '" + tmp.path().string() +
+                                   "' && ROCKDD_PROGRESS_SECONDS=0.01 '" + ROCKDD_BINARY + "' " +
+                                   kSoftening + " 2>&1");
+  ASSERT_EQ(inv.exit_code, 0) << inv.output;
+  const auto summary = nlohmann::json::parse(
+      test::read_text(tmp.path() / "out/uniaxial-compression/summary.json"));
+  ASSERT_TRUE(summary["softening"]["reached"].get<bool>());
+  const double ended = summary["softening"]["time"].get<double>();
+  ASSERT_LT(ended, 0.5 * 10.0) << "the run should end on softening, well before time.end";
+  std::vector<std::string> progress;
+  std::stringstream lines(inv.output);
+  std::string last_line;
+  for (std::string line; std::getline(lines, line);) {
+    if (line.rfind("rockdd: step ", 0) == 0) progress.push_back(line);
+    last_line = line;
+  }
+  ASSERT_GE(progress.size(), 5u) << inv.output;
+  for (const std::string& line : progress) {
+    EXPECT_NE(line.find(" steps/s  ETA "), std::string::npos) << line;
+    EXPECT_EQ(line.find('\r'), std::string::npos) << line;
+  }
+  // The last line: done, by the softening measure, with nothing left.
+  EXPECT_TRUE(std::regex_search(progress.back(),
+                                std::regex("  100\\.0% done  softened (7[0-9]|[89][0-9])% of 70%")))
+      << progress.back();
+  EXPECT_NE(progress.back().find("ETA 00:00:00"), std::string::npos) << progress.back();
+  EXPECT_EQ(last_line.rfind("rockdd: ok: ", 0), 0u) << inv.output;
+  EXPECT_NE(last_line.find("ended on softening"), std::string::npos) << last_line;
+  // The fraction never goes back.
+  double before = -1;
+  for (const std::string& line : progress) {
+    std::smatch m;
+    ASSERT_TRUE(std::regex_search(line, m, std::regex("  ([0-9.]+)% done")));
+    const double fraction = std::stod(m[1]);
+    EXPECT_GE(fraction, before) << line;
+    before = fraction;
+  }
+  // More lines than the eleven tenths: the time-driven ones.
+  EXPECT_GT(progress.size(), 11u) << inv.output;
+}
+
+TEST(CommandLine, ProgressOnATerminalEndsItsLineBeforeTheNextMessage) {
+  if (test::run_shell("command -v script >/dev/null").exit_code != 0)
+    GTEST_SKIP() << "no script(1) to give rockdd a terminal";
+  test::TempDir tmp;
+  // script(1) runs rockdd on a pseudo-terminal: stderr is a tty, the line is rewritten.
+  const auto inv = test::run_shell("cd '" + tmp.path().string() + "' && script -qec \"'" +
+                                   ROCKDD_BINARY + "' " + kSoftening + "\" /dev/null");
+  ASSERT_EQ(inv.exit_code, 0) << inv.output;
+  const std::size_t ok = inv.output.find("rockdd: ok: ");
+  ASSERT_NE(ok, std::string::npos) << inv.output;
+  const std::size_t bar = inv.output.rfind("\r[", ok);
+  ASSERT_NE(bar, std::string::npos) << "no progress bar on the terminal:\n" << inv.output;
+  const std::string last = inv.output.substr(bar, ok - bar);
+  EXPECT_NE(last.find("100.0%"), std::string::npos) << last;
+  EXPECT_NE(last.find("ETA 00:00:00"), std::string::npos) << last;
+  // The message starts a line of its own: the bar's line ended with a newline.
+  EXPECT_TRUE(ok > 0 && inv.output[ok - 1] == '\n') << last;
 }
 
 }  // namespace

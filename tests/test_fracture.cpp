@@ -247,7 +247,7 @@ TEST(DamageEvents, OnlyTheMostOverstressedElementsStartDamageInOnePass) {
 }
 
 TEST(Fracture, CrackJointSpringsSetTheContactStiffness) {
-  // SCENE.md: a [[joint]]'s normal_stiffness (N/m per unit thickness) sets kn, the crack joint
+  // docs/scene.md: a [[joint]]'s normal_stiffness (N/m per unit thickness) sets kn, the crack joint
   // included (it was ignored: fracture faces took 20 E t whatever the scene said). The bar
   // breaks in the last steps; its fracture faces then use the crack joint's springs.
   const auto run = test::run_scene_text(

@@ -3,6 +3,8 @@
 // plain Simulation's. tests/consumer checks the installed package itself.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -212,6 +214,107 @@ TEST(CApi, FieldsMatchTheCppApi) {
             0);
   EXPECT_EQ(std::string(rockdd_version()), rockdd::api::version());
   rockdd_run_free(run);
+  rockdd_scene_free(scene);
+}
+
+TEST(CApi, ConnectivityRebuildsTheMeshOfTheCppApiAndOfTheModel) {
+  // A C caller rebuilds the mesh from the positions and the connectivity: after a run whose
+  // fracture split nodes (the displacement-controlled disk splits in two, under 1 s), the
+  // triangles are the model's, each counter-clockwise at the reference positions, and every
+  // node is used.
+  rockdd_scene* scene = nullptr;
+  const std::string disk = (kSource / "data/brazilian_disk_displacement.toml").string();
+  ASSERT_EQ(rockdd_scene_load_file(disk.c_str(), nullptr, 0, &scene), ROCKDD_OK)
+      << rockdd_last_error();
+  rockdd_run* run = nullptr;
+  ASSERT_EQ(rockdd_run_create(scene, &run), ROCKDD_OK) << rockdd_last_error();
+  EXPECT_EQ(rockdd_run_connectivity(nullptr), nullptr);
+  const long nodes_before = rockdd_run_num_nodes(run);
+  ASSERT_EQ(rockdd_run_execute(run, nullptr, 1, nullptr, nullptr), ROCKDD_OK)
+      << rockdd_last_error();
+  const long nodes = rockdd_run_num_nodes(run), elements = rockdd_run_num_elements(run);
+  const int32_t* conn = rockdd_run_connectivity(run);
+  const double* X = rockdd_run_positions(run);
+  ASSERT_NE(conn, nullptr);
+  std::vector<int> used(static_cast<std::size_t>(nodes), 0);
+  long counter_clockwise = 0;
+  for (long e = 0; e < elements; ++e) {
+    const int32_t a = conn[3 * e], b = conn[3 * e + 1], c = conn[3 * e + 2];
+    ASSERT_TRUE(a >= 0 && a < nodes && b >= 0 && b < nodes && c >= 0 && c < nodes) << e;
+    for (const int32_t n : {a, b, c}) used[static_cast<std::size_t>(n)] = 1;
+    const double area2 = (X[2 * b] - X[2 * a]) * (X[2 * c + 1] - X[2 * a + 1]) -
+                         (X[2 * c] - X[2 * a]) * (X[2 * b + 1] - X[2 * a + 1]);
+    counter_clockwise += area2 > 0;
+  }
+  EXPECT_EQ(counter_clockwise, elements);
+  EXPECT_EQ(std::count(used.begin(), used.end(), 1), nodes);
+  // The same run through the C++ API: the same triangles.
+  rockdd::api::Simulation sim(rockdd::api::Scene::from_file(disk));
+  ASSERT_TRUE(sim.run(on_threads(1)).ok);
+  ASSERT_EQ(sim.connectivity().size(), static_cast<std::size_t>(3 * elements));
+  EXPECT_EQ(std::memcmp(conn, sim.connectivity().data(), sim.connectivity().size_bytes()), 0);
+  const nlohmann::json summary = nlohmann::json::parse(rockdd_run_summary_json(run));
+  EXPECT_GT(summary["damaged_elements"].get<long>(), 0);
+  // The crack split nodes: the C caller must take the arrays again after the run.
+  EXPECT_GT(nodes, nodes_before) << "the run split no node; the test would not see a stale mesh";
+  rockdd_run_free(run);
+  rockdd_scene_free(scene);
+}
+
+TEST(CApi, EnsembleTableIsTheCppApisRowForRow) {
+  const char* overrides[] = {"mesh.divisions=[10, 20]", "time.end=0.025"};  // 4 steps each
+  rockdd_scene* scene = nullptr;
+  ASSERT_EQ(rockdd_scene_load_file(kCompression.c_str(), overrides, 2, &scene), ROCKDD_OK)
+      << rockdd_last_error();
+  const uint64_t first = 7;
+  rockdd_ensemble* table = nullptr;
+  ASSERT_EQ(rockdd_ensemble_run(scene, 2, &first, nullptr, 1, &table), ROCKDD_OK)
+      << rockdd_last_error();
+  const rockdd::api::EnsembleTable expected = rockdd::api::run_ensemble(
+      rockdd::api::Scene::from_file(kCompression, {"mesh.divisions=[10, 20]", "time.end=0.025"}),
+      2, 7, on_threads(1));
+  ASSERT_EQ(rockdd_ensemble_num_columns(table), expected.columns.size());
+  for (std::size_t c = 0; c < expected.columns.size(); ++c) {
+    EXPECT_EQ(rockdd_ensemble_column(table, c), expected.columns[c]);
+    EXPECT_EQ(rockdd_ensemble_column_index(table, expected.columns[c].c_str()),
+              static_cast<long>(c));
+  }
+  EXPECT_EQ(rockdd_ensemble_column(table, expected.columns.size()), nullptr);
+  EXPECT_EQ(rockdd_ensemble_column_index(table, "no.such.column"), -1);
+  ASSERT_EQ(rockdd_ensemble_num_rows(table), 2u);
+  const long steps = rockdd_ensemble_column_index(table, "steps");
+  ASSERT_GE(steps, 0);
+  for (std::size_t r = 0; r < 2; ++r) {
+    EXPECT_EQ(rockdd_ensemble_seed(table, r), 7u + r);
+    EXPECT_STREQ(rockdd_ensemble_status(table, r), "ok");
+    EXPECT_STREQ(rockdd_ensemble_reason(table, r), "");
+    for (std::size_t c = 0; c < expected.columns.size(); ++c) {
+      if (expected.columns[c] == "wall_seconds") continue;
+      EXPECT_EQ(rockdd_ensemble_cell(table, r, c), expected.rows[r].cells[c]) << c;
+    }
+    EXPECT_EQ(rockdd_ensemble_value(table, r, static_cast<std::size_t>(steps)), 4.0);
+  }
+  // An empty cell (peaks come from files, and there are none) reads as NaN; out of range too.
+  const long peak = rockdd_ensemble_column_index(table, "peaks.top.fy");
+  ASSERT_GE(peak, 0);
+  EXPECT_STREQ(rockdd_ensemble_cell(table, 0, static_cast<std::size_t>(peak)), "");
+  EXPECT_TRUE(std::isnan(rockdd_ensemble_value(table, 0, static_cast<std::size_t>(peak))));
+  EXPECT_TRUE(std::isnan(rockdd_ensemble_value(table, 2, 0)));
+  EXPECT_EQ(rockdd_ensemble_status(table, 2), nullptr);
+  rockdd_ensemble_free(table);
+
+  // A homogeneous scene has no seeds to vary: bad input, with the reader's reason.
+  rockdd_scene* plain = nullptr;
+  ASSERT_EQ(rockdd_scene_load_file(kCantilever1.c_str(), nullptr, 0, &plain), ROCKDD_OK);
+  rockdd_ensemble* none = nullptr;
+  EXPECT_EQ(rockdd_ensemble_run(plain, 2, nullptr, nullptr, 1, &none), ROCKDD_BAD_INPUT);
+  EXPECT_NE(std::string(rockdd_last_error()).find("heterogeneous"), std::string::npos)
+      << rockdd_last_error();
+  EXPECT_EQ(none, nullptr);
+  EXPECT_EQ(rockdd_ensemble_run(scene, 0, nullptr, nullptr, 1, &none), ROCKDD_BAD_INPUT);
+  EXPECT_EQ(rockdd_ensemble_run(nullptr, 2, nullptr, nullptr, 1, &none), ROCKDD_BAD_INPUT);
+  rockdd_ensemble_free(nullptr);
+  rockdd_scene_free(plain);
   rockdd_scene_free(scene);
 }
 

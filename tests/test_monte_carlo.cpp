@@ -6,7 +6,9 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -167,12 +169,59 @@ TEST(EnsembleProgress, LineGivesCountsRateAndEta) {
   p.running = 2;
   p.failed = 1;
   p.finished_here = 5;
-  p.elapsed_s = 50.0;  // 360 realizations/h; 3 left take 30 s
+  p.elapsed_s = 50.0;  // 360 realizations/h
+  p.slots = 2;
+  p.mean_realization_s = 20.0;
+  p.running_for = {15.0, 5.0};  // 5 s and 15 s left; the last one starts in the first slot
   EXPECT_EQ(progress_line(p),
-            "mc: 5/8 done, 2 running, 1 failed, 360 realizations/h, ETA 00:00:30");
+            "mc: 5/8 done, 2 running, 1 failed, 360 realizations/h, ETA 00:00:25");
   EXPECT_EQ(clock_time(3 * 3600 + 61), "03:01:01");
   p.finished_here = 0;
   EXPECT_EQ(progress_line(p), "mc: 5/8 done, 2 running, 1 failed, -- realizations/h, ETA --");
+}
+
+TEST(EnsembleProgress, EtaOverlapsTheJobsAndCountsWhatTheRunningOnesHaveDone) {
+  // Issue 31: "ETA 00:00:31" about 4 s before the end: the ETA was the realizations left over
+  // the ensemble's rate, blind to the running ones being nearly done.
+  EnsembleProgress p;
+  p.total = 4;
+  p.done = 2;
+  p.running = 2;
+  p.finished_here = 2;
+  p.elapsed_s = 30.0;
+  p.slots = 2;
+  p.mean_realization_s = 15.0;
+  p.running_for = {11.0, 11.0};  // both end in about 4 s
+  EXPECT_DOUBLE_EQ(ensemble_eta_seconds(p), 4.0);
+  // Six to go on two slots, none running: three rounds of 10 s.
+  p = {};
+  p.total = 6;
+  p.finished_here = 1;
+  p.done = 0;
+  p.slots = 2;
+  p.mean_realization_s = 10.0;
+  EXPECT_DOUBLE_EQ(ensemble_eta_seconds(p), 30.0);
+  // One slot: one after the other.
+  p.slots = 1;
+  EXPECT_DOUBLE_EQ(ensemble_eta_seconds(p), 60.0);
+  // A running realization past the mean is expected to end now, not to have negative time.
+  p = {};
+  p.total = 3;
+  p.done = 2;
+  p.running = 1;
+  p.finished_here = 2;
+  p.slots = 2;
+  p.mean_realization_s = 10.0;
+  p.running_for = {14.0};
+  EXPECT_DOUBLE_EQ(ensemble_eta_seconds(p), 0.0);
+  // Running seeds whose start is not known here (MPI peers): half a realization each.
+  p.running_for = {};
+  EXPECT_DOUBLE_EQ(ensemble_eta_seconds(p), 5.0);
+  // Nothing finished yet: unknown; everything done: none left.
+  p.finished_here = 0;
+  EXPECT_LT(ensemble_eta_seconds(p), 0.0);
+  p.done = p.total;
+  EXPECT_DOUBLE_EQ(ensemble_eta_seconds(p), 0.0);
 }
 
 TEST(MonteCarloPlan, ShardsSplitTheRealizationsRoundRobin) {
@@ -362,12 +411,23 @@ TEST(MonteCarloCommand, RowsDoNotDependOnJobsShardsOrMpiRanks) {
   EXPECT_TRUE(report["statistics"]["softening.peak"].contains("weibull"));
   EXPECT_EQ(merged["statistics"]["peaks.top.fy"], peak);
 
-  // No VTU frames without --frames; history and summary for every realization.
+  // Without --frames, each realization keeps its last VTU frame only, compressed (issue 31),
+  // with its history and summary.
   const auto seed7 = tmp.path() / "one" / kFolder / "seed_7";
   EXPECT_TRUE(std::filesystem::exists(seed7 / "summary.json"));
   EXPECT_TRUE(std::filesystem::exists(seed7 / "history.csv"));
-  EXPECT_FALSE(std::filesystem::exists(seed7 / "frames"));
-  EXPECT_FALSE(std::filesystem::exists(seed7 / "frames.pvd"));
+  const long steps = nlohmann::json::parse(test::read_text(seed7 / "summary.json"))["steps"];
+  char last[32];
+  std::snprintf(last, sizeof last, "frame_%05ld.vtu", steps);
+  std::vector<std::string> frames;
+  for (const auto& entry : std::filesystem::directory_iterator(seed7 / "frames"))
+    frames.push_back(entry.path().filename().string());
+  EXPECT_EQ(frames, std::vector<std::string>{last});
+  EXPECT_NE(test::read_text(seed7 / "frames" / last).find("compressor=\"vtkZLibDataCompressor\""),
+            std::string::npos);
+  EXPECT_NE(test::read_text(seed7 / "frames.pvd").find(std::string("frames/") + last),
+            std::string::npos);
+  // (CommandLine.MonteCarloRunsOneRealizationPerSeedAndTabulatesThem: it is `rockdd run`'s.)
   // Progress lines as realizations finish.
   EXPECT_NE(one.output.find("mc: 8/8 done, 0 running, 0 failed, "), std::string::npos)
       << one.output;
@@ -536,6 +596,30 @@ TEST(MonteCarloCommand, FramesOnlyWithTheFramesOption) {
   const auto seed = tmp.path() / "mc" / kFolder / "seed_7";
   EXPECT_TRUE(std::filesystem::exists(seed / "frames.pvd"));
   EXPECT_TRUE(std::filesystem::exists(seed / "frames" / "frame_00000.vtu"));
+  // --no-last-frame: none at all; the rows are the same.
+  const auto none = rockdd_cli("mc " + kScene +
+                                   " --realizations 1 --first-seed 7 --threads 2 --no-last-frame "
+                                   "--quiet --out none" +
+                                   kCoarse,
+                               tmp.path());
+  ASSERT_EQ(none.exit_code, 0) << none.output;
+  const auto bare = tmp.path() / "none" / kFolder / "seed_7";
+  EXPECT_TRUE(std::filesystem::exists(bare / "summary.json"));
+  EXPECT_FALSE(std::filesystem::exists(bare / "frames"));
+  EXPECT_FALSE(std::filesystem::exists(bare / "frames.pvd"));
+  EXPECT_EQ(rows_without_wall_time(tmp.path() / "none" / kFolder / "mc.csv"),
+            rows_without_wall_time(tmp.path() / "mc" / kFolder / "mc.csv"));
+  // The ensemble's provenance: the scene's text and the command line as given.
+  const auto provenance =
+      nlohmann::json::parse(test::read_text(tmp.path() / "none" / kFolder / "mc.provenance.json"));
+  EXPECT_EQ(provenance["scene"], "uniaxial-compression");
+  EXPECT_EQ(provenance["scene_text"],
+            test::read_text(kSource / "data/uniaxial_compression.toml"));
+  ASSERT_EQ(provenance["runs"].size(), 1u);
+  const auto& command = provenance["runs"][0]["command"];
+  EXPECT_NE(std::find(command.begin(), command.end(), "--no-last-frame"), command.end());
+  for (const char* key : {"started", "commit", "rockdd_version", "host"})
+    EXPECT_TRUE(provenance["runs"][0].contains(key)) << key;
 }
 
 TEST(MonteCarloCommand, BadShardsAndMergesExitTwoNamingTheOption) {

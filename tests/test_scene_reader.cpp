@@ -1,6 +1,6 @@
-// Scene reader: the SCENE.md example read field by field, defaults, --set overrides, and
-// every malformed scene of tests/scenes/bad/ (listed in its CASES.md) rejected with the
-// right key path, message and file:line.
+// Scene reader: the scene contract's example (tests/scenes/good/full.toml) read field by field,
+// defaults, --set overrides, and every malformed scene of tests/scenes/bad/ (listed in its
+// CASES.md) rejected with the right key path, message and file:line.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +8,7 @@
 #include <fstream>
 #include <functional>
 #include <map>
+#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -480,6 +481,106 @@ INSTANTIATE_TEST_SUITE_P(Cases, BadScene, ::testing::ValuesIn(bad_cases()),
                          [](const ::testing::TestParamInfo<BadCase>& param) {
                            return fs::path(param.param.file).stem().string();
                          });
+
+
+// ---------------------------------------------------------------------------------------------
+// docs/scene.md against the reader: every key the reader accepts is documented, and every
+// documented key is accepted. The reader's accepted keys are not taken from a list kept for the
+// test: each table is given an unknown key, and the reader's own message ("expected one of
+// ...; got unknown key") lists what it accepts there.
+
+/// docs/scene.md's keys: under each heading "### `[name]`" (or "### `[[name]]`"), the first
+/// cell of each table row, "| `key` |". The headings are the top level's keys.
+std::map<std::string, std::set<std::string>> documented_keys() {
+  std::ifstream in(fs::path(ROCKDD_SOURCE_DIR) / "docs" / "scene.md");
+  EXPECT_TRUE(in) << "no docs/scene.md";
+  const std::regex heading(R"(^#+ `\[\[?([a-z_]+)\]\]?`\s*$)"), row(R"(^\| `([a-z_0-9]+)` \|)");
+  const std::regex other_heading(R"(^#+ )");
+  std::map<std::string, std::set<std::string>> keys;
+  std::string table;
+  for (std::string line; std::getline(in, line);) {
+    std::smatch m;
+    if (std::regex_search(line, m, heading)) {
+      table = m[1];
+      keys[""].insert(table);
+      keys[table];
+    } else if (std::regex_search(line, other_heading)) {
+      table.clear();
+    } else if (!table.empty() && std::regex_search(line, m, row)) {
+      EXPECT_TRUE(keys[table].insert(m[1]).second) << table << "." << m[1] << " twice";
+    }
+  }
+  return keys;
+}
+
+/// The keys the reader accepts in `table` ("" for the top level), from its message about an
+/// unknown key there in an otherwise valid scene.
+std::set<std::string> accepted_keys(const std::string& table, bool array) {
+  std::map<std::string, std::string> tables = {
+      {"scene", "name = \"keys\"\n"},
+      {"mesh", "shape = \"rectangle\"\nsize = [1.0, 1.0]\ndivisions = [1, 1]\n"},
+      {"material", "density = 1.0\nyoung = 1.0\npoisson = 0.2\n"}};
+  const std::string unknown = "zz_not_a_key = 1\n";
+  std::string text = table.empty() ? unknown : "";
+  if (!table.empty()) tables[table] += unknown;
+  for (const auto& [name, body] : tables) {
+    const bool is_array = name == "material" || (name == table && array);
+    text += (is_array ? "[[" + name + "]]\n" : "[" + name + "]\n") + body;
+  }
+  try {
+    parse_scene(text, "keys.toml");
+  } catch (const InputError& e) {
+    const std::string message = e.expected();
+    const std::string lead = "expected one of ", tail = "; got unknown key \"zz_not_a_key\"";
+    const std::size_t end = message.find(tail);
+    if (message.rfind(lead, 0) != 0 || end == std::string::npos) {
+      ADD_FAILURE() << table << ": " << e.what();
+      return {};
+    }
+    EXPECT_EQ(e.key(), table.empty() ? "zz_not_a_key"
+                                     : table + (array ? "[0]" : "") + ".zz_not_a_key");
+    std::set<std::string> keys;
+    std::stringstream list(message.substr(lead.size(), end - lead.size()));
+    for (std::string key; std::getline(list, key, ',');) keys.insert(key.substr(key.find_first_not_of(' ')));
+    return keys;
+  }
+  ADD_FAILURE() << table << ": an unknown key was accepted";
+  return {};
+}
+
+TEST(SceneReference, EveryKeyTheReaderAcceptsIsDocumentedAndEveryDocumentedKeyIsAccepted) {
+  const auto documented = documented_keys();
+  ASSERT_TRUE(documented.count("")) << "docs/scene.md has no table headings";
+  const std::set<std::string> tables = accepted_keys("", false);
+  EXPECT_EQ(documented.at(""), tables) << "the top level's tables";
+  const std::set<std::string> arrays = {"material", "initial", "joint", "boundary", "load",
+                                        "probe"};
+  int keys = 0;
+  for (const std::string& table : tables) {
+    SCOPED_TRACE(table);
+    const std::set<std::string> accepted = accepted_keys(table, arrays.count(table) > 0);
+    ASSERT_FALSE(accepted.empty());
+    const auto found = documented.find(table);
+    ASSERT_NE(found, documented.end()) << "docs/scene.md has no heading for [" << table << "]";
+    for (const std::string& key : accepted)
+      EXPECT_TRUE(found->second.count(key)) << table << "." << key << " is not in docs/scene.md";
+    for (const std::string& key : found->second)
+      EXPECT_TRUE(accepted.count(key)) << table << "." << key
+                                       << " is in docs/scene.md but the reader refuses it";
+    keys += static_cast<int>(accepted.size());
+  }
+  EXPECT_GE(keys, 70);  // 12 tables, 81 keys when this test was written
+}
+
+TEST(SceneReference, TheReferenceTestWouldSeeAKeyMissingFromTheDocument) {
+  // The parsing above must find keys at all: a key the reader accepts is found in the page.
+  const auto documented = documented_keys();
+  ASSERT_TRUE(documented.count("output"));
+  EXPECT_TRUE(documented.at("output").count("compress"));
+  EXPECT_TRUE(documented.at("material").count("weibull_size_scaling"));
+  EXPECT_FALSE(documented.at("material").count("zz_not_a_key"));
+  EXPECT_EQ(accepted_keys("output", false).count("compress"), 1u);
+}
 
 }  // namespace
 }  // namespace rockdd

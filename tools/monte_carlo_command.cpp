@@ -8,7 +8,10 @@
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <ctime>
+#include <iterator>
 #include <deque>
 #include <fstream>
 #include <iostream>
@@ -17,17 +20,20 @@
 #include <stdexcept>
 #include <thread>
 
+#include "engine/common/atomic_file.hpp"
 #include "engine/monte_carlo/ensemble_merge.hpp"
 #include "engine/monte_carlo/ensemble_progress.hpp"
 #include "engine/monte_carlo/ensemble_resume.hpp"
 #include "engine/report/run_result.hpp"
 #include "tools/ensemble_peers.hpp"
 #include "tools/realization_workers.hpp"
+#include "rockdd_git_commit.hpp"  // generated: ROCKDD_GIT_COMMIT
 
 namespace rockdd::cli {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -83,8 +89,9 @@ class EnsembleRun {
         status_[row.seed] = row.status;
     appender_ = std::make_unique<EnsembleTableAppender>(plan_.dir / "mc.csv", columns_);
     jobs_ = plan_jobs(options_, static_cast<long>(todo.size()));
+    record_provenance();
     workers_ = std::make_unique<RealizationWorkers>(scene_, plan_, columns_, jobs_.threads_per_run,
-                                                    options_.frames);
+                                                    frame_mode(options_));
     announce(seeds, todo);
     if (peers_) peers_->begin(true);
 
@@ -99,12 +106,18 @@ class EnsembleRun {
           finish(done);
       const bool peers_done = !peers_ || peers_->finished();
       if (workers_->running() == 0 && peers_done && (queue.empty() || !bad_input_.empty())) break;
-      // Alone, wait for a worker; with peers, look at both every few milliseconds (a blocking
-      // MPI receive would spin a core that a realization needs).
-      if (const auto done = workers_->reap(!peers_))
+      // Look at the workers (and peers) every few milliseconds rather than wait for one: a
+      // blocking MPI receive would spin a core that a realization needs, and a progress line
+      // is due at least every kProgressInterval.
+      if (const auto done = workers_->reap(false)) {
         finish(*done);
-      else if (peers_)
-        std::this_thread::sleep_for(std::chrono::milliseconds(5));
+      } else {
+        std::this_thread::sleep_for(std::chrono::milliseconds(peers_ ? 5 : 50));
+        if (!options_.quiet && seconds_since(last_line_) >= interval_) {
+          std::fputs((progress_line(progress()) + "\n").c_str(), stderr);
+          last_line_ = Clock::now();
+        }
+      }
     }
     if (!bad_input_.empty()) {
       std::cerr << "rockdd: error: " << bad_input_ << '\n';
@@ -130,6 +143,47 @@ class EnsembleRun {
     std::cerr << '\n';
   }
 
+  /// mc.provenance.json: the scene file (its path and text) and the overrides, and each run
+  /// of the ensemble in this folder: its command line, start (UTC), rockdd's version and the
+  /// commit it was built from, the host, jobs and threads. tools/plot ensemble --html shows it.
+  /// A --restart begins the list anew.
+  void record_provenance() const {
+    const std::filesystem::path file = plan_.dir / "mc.provenance.json";
+    nlohmann::json provenance;
+    if (!options_.restart) {
+      std::ifstream in(file);
+      try {
+        if (in) provenance = nlohmann::json::parse(in);
+      } catch (const nlohmann::json::exception&) {
+        provenance = nullptr;  // written anew below
+      }
+    }
+    if (!provenance.is_object() || !provenance.contains("runs") || !provenance["runs"].is_array())
+      provenance = {{"runs", nlohmann::json::array()}};
+    std::ifstream scene_in(scene_.file, std::ios::binary);
+    const std::string text{std::istreambuf_iterator<char>(scene_in), {}};
+    provenance["scene"] = scene_.name;
+    provenance["scene_file"] = scene_.file.string();
+    provenance["scene_text"] = text;
+    provenance["overrides"] = options_.overrides;
+    provenance["first_seed"] = plan_.first_seed;
+    const std::time_t now = std::time(nullptr);
+    char started[32];
+    std::strftime(started, sizeof started, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+    char host[256] = "";
+    ::gethostname(host, sizeof host - 1);
+    provenance["runs"].push_back({{"command", options_.command},
+                                  {"started", started},
+                                  {"rockdd_version", ROCKDD_VERSION},
+                                  {"commit", ROCKDD_GIT_COMMIT},
+                                  {"host", host},
+                                  {"realizations", plan_.realizations},
+                                  {"shard", plan_.shard.text()},
+                                  {"jobs", jobs_.jobs},
+                                  {"threads_per_run", jobs_.threads_per_run}});
+    write_file_atomically(file, provenance.dump(2) + "\n");
+  }
+
   void launch(std::uint64_t seed) { workers_->launch(seed, {appender_->fd(), lock_->fd()}); }
 
   void finish(const FinishedRealization& done) {
@@ -142,6 +196,7 @@ class EnsembleRun {
     write_ensemble_report(plan_.dir, identity_);
     status_[row.seed] = row.status;
     ++finished_here_;
+    seconds_here_ += done.seconds;
     if (options_.quiet) return;
     char seconds[32];
     std::snprintf(seconds, sizeof seconds, "%.1f", done.seconds);
@@ -149,6 +204,7 @@ class EnsembleRun {
     if (!row.reason.empty()) line += ": " + row.reason;
     line += " (" + std::string(seconds) + " s)\n" + progress_line(progress()) + "\n";
     std::fputs(line.c_str(), stderr);
+    last_line_ = Clock::now();
   }
 
   EnsembleProgress progress() const {
@@ -159,6 +215,9 @@ class EnsembleRun {
     p.failed = failed();
     p.finished_here = finished_here_;
     p.elapsed_s = seconds_since(start_);
+    p.slots = jobs_.jobs * (peers_ ? peers_->count() + 1 : 1);
+    p.mean_realization_s = finished_here_ > 0 ? seconds_here_ / finished_here_ : 0.0;
+    p.running_for = workers_->running_seconds();
     return p;
   }
 
@@ -200,11 +259,28 @@ class EnsembleRun {
   std::unique_ptr<RealizationWorkers> workers_;
   std::map<std::uint64_t, std::string> status_;  // the status of each of this run's seeds done
   long finished_here_ = 0;
+  double seconds_here_ = 0.0;  // the wall times of the realizations finished here, summed
   std::string bad_input_;  // the message of a worker that found bad input
   Clock::time_point start_ = Clock::now();
+  Clock::time_point last_line_ = Clock::now();  // the last progress line printed
+  const double interval_ = progress_interval_seconds();
 };
 
 }  // namespace
+
+double progress_interval_seconds() {
+  if (const char* text = std::getenv("ROCKDD_PROGRESS_SECONDS")) {
+    char* end = nullptr;
+    const double seconds = std::strtod(text, &end);
+    if (end != text && *end == '\0' && seconds > 0 && seconds < 1e9) return seconds;
+  }
+  return 10.0;
+}
+
+FrameMode frame_mode(const MonteCarloOptions& options) {
+  if (options.frames) return FrameMode::all;
+  return options.last_frame ? FrameMode::last : FrameMode::none;
+}
 
 JobPlan plan_jobs(const MonteCarloOptions& options, long todo) {
   const int hardware = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -11,6 +11,9 @@
 
 namespace rockdd::cli {
 
+/// Which VTU frames a realization of an ensemble writes.
+enum class FrameMode { none, last, all };
+
 /// rockdd mc's command line.
 struct MonteCarloOptions {
   std::string scene;
@@ -21,10 +24,19 @@ struct MonteCarloOptions {
   int jobs = 0;     // realizations at once; 0: one per thread
   std::optional<std::filesystem::path> out;
   Shard shard;
-  bool restart = false;  // discard the rows of an earlier run
-  bool frames = false;   // VTU frames of every realization
+  bool restart = false;     // discard the rows of an earlier run
+  bool frames = false;      // --frames: every VTU frame of every realization
+  bool last_frame = true;   // each realization's last VTU frame (--no-last-frame: none)
   bool quiet = false;
+  std::vector<std::string> command;  // the command line as given, for mc.provenance.json
 };
+
+/// The longest time between two progress lines written to a log (rockdd run off a terminal,
+/// rockdd mc): 10 s, or $ROCKDD_PROGRESS_SECONDS when it is a positive number.
+double progress_interval_seconds();
+
+/// The VTU frames each realization of `options` writes.
+FrameMode frame_mode(const MonteCarloOptions& options);
 
 class EnsemblePeers;
 

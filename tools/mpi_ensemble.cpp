@@ -148,7 +148,7 @@ class MpiPeers final : public EnsemblePeers {
 int worker_rank(const MonteCarloOptions& options, const Scene& scene, const MonteCarloPlan& plan) {
   const JobPlan jobs = plan_jobs(options, plan.realizations);
   RealizationWorkers workers(scene, plan, ensemble_columns(scene), jobs.threads_per_run,
-                             options.frames);
+                             frame_mode(options));
   bool asked = false, stopped = false;
   for (;;) {
     if (!stopped && !asked && workers.running() < jobs.jobs) {

@@ -44,18 +44,21 @@ std::string read_report(int fd) {
 
 /// In a worker: realization `seed` into its folder; returns the worker's exit status.
 int run_realization(const Scene& scene, const MonteCarloPlan& plan, std::uint64_t seed, int threads,
-                    bool frames, int report_fd) {
+                    FrameMode frames, int report_fd) {
   try {
     std::optional<tbb::global_control> parallelism;  // the model and set-up too
     if (threads > 0)
       parallelism.emplace(tbb::global_control::max_allowed_parallelism,
                           static_cast<std::size_t>(threads));
-    const Scene realization = realization_scene(scene, seed);
+    Scene realization = realization_scene(scene, seed);
+    // The last frame only: kept in memory as the run goes and written when it ends (one
+    // compressed frame for the crack pattern, not one every output.every steps).
+    realization.output.last_frame_only = frames == FrameMode::last;
     Simulation sim(realization, build_scene_model(realization));
     RunOptions options;
     options.out_dir = plan.realization_dir(seed);
     options.threads = threads;
-    options.write_frames = frames;
+    options.write_frames = frames != FrameMode::none;
     return sim.run(options).ok ? kOk : kFailed;
   } catch (const InputError& e) {
     report_to_parent(report_fd, e.what());
@@ -142,7 +145,7 @@ void check_first_realization(const Scene& scene, const MonteCarloPlan& plan) {
 
 RealizationWorkers::RealizationWorkers(const Scene& scene, const MonteCarloPlan& plan,
                                        std::vector<std::string> columns, int threads_per_run,
-                                       bool frames)
+                                       FrameMode frames)
     : scene_(scene),
       plan_(plan),
       columns_(std::move(columns)),
@@ -184,6 +187,14 @@ EnsembleRow RealizationWorkers::row_of(std::uint64_t seed, int status,
                            strsignal(WTERMSIG(status)) + ")");
   if (code == kCrashed && !report.empty()) return crashed_row(columns_, seed, report);
   return crashed_row(columns_, seed, "worker exited with status " + std::to_string(code));
+}
+
+std::vector<double> RealizationWorkers::running_seconds() const {
+  std::vector<double> seconds;
+  const auto now = Clock::now();
+  for (const auto& [pid, worker] : workers_)
+    seconds.push_back(std::chrono::duration<double>(now - worker.start).count());
+  return seconds;
 }
 
 std::optional<FinishedRealization> RealizationWorkers::reap(bool block) {

@@ -11,6 +11,7 @@
 
 #include "engine/engine.hpp"
 #include "engine/monte_carlo/monte_carlo.hpp"
+#include "tools/monte_carlo_command.hpp"
 
 namespace rockdd::cli {
 
@@ -37,7 +38,7 @@ struct FinishedRealization {
 class RealizationWorkers {
  public:
   RealizationWorkers(const Scene& scene, const MonteCarloPlan& plan,
-                     std::vector<std::string> columns, int threads_per_run, bool frames);
+                     std::vector<std::string> columns, int threads_per_run, FrameMode frames);
   ~RealizationWorkers();
   RealizationWorkers(const RealizationWorkers&) = delete;
   RealizationWorkers& operator=(const RealizationWorkers&) = delete;
@@ -49,6 +50,8 @@ class RealizationWorkers {
   /// none runs).
   std::optional<FinishedRealization> reap(bool block);
   long running() const { return static_cast<long>(workers_.size()); }
+  /// How long each running worker has run, s.
+  std::vector<double> running_seconds() const;
 
  private:
   /// A realization running in a worker process.
@@ -63,7 +66,7 @@ class RealizationWorkers {
   const MonteCarloPlan& plan_;
   const std::vector<std::string> columns_;
   const int threads_per_run_;
-  const bool frames_;
+  const FrameMode frames_;
   std::map<pid_t, Worker> workers_;
 };
 

@@ -10,6 +10,7 @@ import math
 import os
 import re
 import xml.etree.ElementTree as ET
+import zlib
 
 import numpy as np
 
@@ -23,8 +24,9 @@ VTU_TYPES = {"Float64": "<f8", "Float32": "<f4", "Int64": "<i8", "Int32": "<i4",
 
 
 def read_vtu(path):
-    """A triangle-mesh VTU with raw appended data (as rockdd writes it) as numpy arrays:
-    {"points": (N, 3), "triangles": (M, 3), "point_data": {name: array}, "cell_data": {...}}."""
+    """A triangle-mesh VTU with appended binary data, raw or zlib-compressed (as rockdd writes
+    it), as numpy arrays: {"points": (N, 3), "triangles": (M, 3), "point_data": {name: array},
+    "cell_data": {...}, "component_names": {name: [names]}}."""
     if not os.path.isfile(path):
         raise ResultError(f"no such file: {path}")
     with open(path, "rb") as f:
@@ -32,7 +34,7 @@ def read_vtu(path):
     tag = raw.find(b"<AppendedData")
     marker = raw.find(b"_", raw.find(b">", tag) + 1) if tag >= 0 else -1
     if marker < 0:
-        raise ResultError(f"{path}: not a VTU file with raw appended data")
+        raise ResultError(f"{path}: not a VTU file with appended binary data")
     # The XML part parses on its own once the binary section is cut off and the tags closed.
     try:
         root = ET.fromstring(raw[:tag].decode("utf-8") + "</VTKFile>")
@@ -44,26 +46,59 @@ def read_vtu(path):
     piece = root.find("UnstructuredGrid/Piece")
     if header is None or piece is None:
         raise ResultError(f"{path}: not an UnstructuredGrid VTU file")
+    compressor = root.get("compressor")
+    if compressor not in (None, "vtkZLibDataCompressor"):
+        raise ResultError(f"{path}: data compressed with {compressor}; only zlib is read")
     base = marker + 1
+    size = np.dtype(header).itemsize
+
+    def block_bytes(start, name, where):
+        """The (uncompressed) bytes of the appended block at `start`."""
+        if start + size > len(raw):
+            raise ResultError(f"{path}: {where} array '{name}' lies past the end of the file")
+        if compressor is None:
+            nbytes = int(np.frombuffer(raw, dtype=header, count=1, offset=start)[0])
+            if start + size + nbytes > len(raw):
+                raise ResultError(f"{path}: {where} array '{name}' is truncated")
+            return raw[start + size:start + size + nbytes]
+        # vtkZLibDataCompressor: [blocks, block size, last block size (0: full), compressed
+        # size of each block], then the blocks, each compressed on its own.
+        blocks = int(np.frombuffer(raw, dtype=header, count=1, offset=start)[0])
+        if start + (3 + blocks) * size > len(raw):
+            raise ResultError(f"{path}: {where} array '{name}' is truncated")
+        head = np.frombuffer(raw, dtype=header, count=3 + blocks, offset=start).astype(np.int64)
+        at, parts = start + (3 + blocks) * size, []
+        for b in range(blocks):
+            packed = raw[at:at + int(head[3 + b])]
+            if len(packed) != int(head[3 + b]):
+                raise ResultError(f"{path}: {where} array '{name}' is truncated")
+            try:
+                parts.append(zlib.decompress(packed))
+            except zlib.error as e:
+                raise ResultError(f"{path}: {where} array '{name}': bad zlib data ({e})") from None
+            at += int(head[3 + b])
+        data = b"".join(parts)
+        expected = (blocks - 1) * int(head[1]) + (int(head[2]) or int(head[1])) if blocks else 0
+        if len(data) != expected:
+            raise ResultError(f"{path}: {where} array '{name}' holds {len(data)} bytes, its "
+                              f"header says {expected}")
+        return data
 
     def array(element, count, where):
         name = element.get("Name", "Points")
         dtype = VTU_TYPES.get(element.get("type"))
         if element.get("format") != "appended" or dtype is None:
-            raise ResultError(f"{path}: {where} array '{name}' is not appended raw data of a known type")
+            raise ResultError(f"{path}: {where} array '{name}' is not appended binary data of a known type")
         try:
             start = base + int(element.get("offset"))
             components = int(element.get("NumberOfComponents", "1"))
         except (TypeError, ValueError):
             raise ResultError(f"{path}: {where} array '{name}' has a bad offset or component count") from None
-        size = np.dtype(header).itemsize
-        if start + size > len(raw):
-            raise ResultError(f"{path}: {where} array '{name}' lies past the end of the file")
-        nbytes = int(np.frombuffer(raw, dtype=header, count=1, offset=start)[0])
+        data = block_bytes(start, name, where)
         itemsize = np.dtype(dtype).itemsize
-        if start + size + nbytes > len(raw) or nbytes % itemsize:
+        if len(data) % itemsize:
             raise ResultError(f"{path}: {where} array '{name}' is truncated")
-        values = np.frombuffer(raw, dtype=dtype, count=nbytes // itemsize, offset=start + size)
+        values = np.frombuffer(data, dtype=dtype)
         if count is not None and values.size != count * components:
             raise ResultError(f"{path}: {where} array '{name}' has {values.size} values, "
                             f"expected {count} x {components}")
@@ -92,6 +127,10 @@ def read_vtu(path):
                        for a in piece.findall("PointData/DataArray")},
         "cell_data": {a.get("Name"): array(a, num_cells, "cell")
                       for a in piece.findall("CellData/DataArray")},
+        "component_names": {a.get("Name"): [a.get(f"ComponentName{i}")
+                                            for i in range(int(a.get("NumberOfComponents", "1")))]
+                            for a in piece.findall("*/DataArray")
+                            if a.get("ComponentName0") is not None},
     }
 
 

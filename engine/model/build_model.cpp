@@ -86,7 +86,7 @@ Model build_model(const Scene& scene, const Mesh& mesh) {
   const auto material_of_body = material_of_bodies(scene, model.sets.bodies, elements_per_body);
 
   // Blocks: a shared edge binds its two elements unless a [[joint]] names their two bodies
-  // (SCENE.md: the common curve of conformal bodies becomes a joint, its nodes are split).
+  // (docs/scene.md: the common curve of conformal bodies becomes a joint, its nodes are split).
   const EdgeAdjacency adjacency = build_edge_adjacency(mesh.triangles, where.c_str());
   std::vector<std::uint8_t> intact(mesh.triangles.size(), 1);
   auto joint_between = [&](std::int32_t body_a, std::int32_t body_b) {

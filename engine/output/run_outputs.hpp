@@ -1,10 +1,14 @@
 #pragma once
 // The files of one run in its folder (<out>/<scene name>/ by default): history.csv, frames/
 // with frames.pvd, profiles/, summary.json. Every file appears complete or not at all.
+#include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -40,22 +44,42 @@ class RunOutputs {
   void history_row(long step, double time, double dt, const std::vector<double>& probe_values,
                    const EnergyBalance& energy);
   /// Writes frames/frame_<step>.vtu with the scene's output fields, and rewrites frames.pvd
-  /// (nothing when frames are off).
+  /// (nothing when frames are off). With the scene's output.last_frame_only (rockdd mc), the
+  /// frame is only kept, replacing the one kept before, and finish() writes the last.
   void frame(const Model& model, long step, double time);
   /// Writes events/<event>.vtu, the state after the damage pass of a run event (not part of
   /// frames.pvd: it lies inside a step), and returns its path in the run folder; empty when
-  /// frames are off.
+  /// frames are off or only the last is kept (output.last_frame_only).
   std::string event_frame(const Model& model, const std::string& event);
   /// Largest magnitude seen of each probe column.
   const std::map<std::string, double>& peaks() const { return peaks_; }
   /// Run folder.
   const std::filesystem::path& dir() const { return dir_; }
-  /// Commits history.csv and writes summary.json.
+  /// Commits history.csv, writes the kept last frame (output.last_frame_only) and
+  /// summary.json.
   void finish(const nlohmann::json& summary);
 
+  /// Observes each history row as it is written: the command line's progress line follows
+  /// the column that ends a run on softening through it. Per thread: the rows of the runs
+  /// this thread makes from now on (an empty function stops it).
+  using RowObserver = std::function<void(long step, const std::vector<std::string>& columns,
+                                         const std::vector<double>& values)>;
+  static void observe_rows(RowObserver observer);
+
  private:
-  /// Writes `file` with the scene's output fields of `model`.
-  void write_fields(const Model& model, const std::filesystem::path& file) const;
+  /// The arrays of one frame, copied from the model.
+  struct Frame {
+    long step = 0;
+    double time = 0.0;
+    std::vector<double> points, displacement, velocity, stress, strain, principal, damage;
+    std::vector<std::int32_t> triangles, block, material;
+  };
+  bool wants(std::string_view field) const;  // an output.fields entry
+  Frame capture(const Model& model, long step, double time) const;
+  /// Writes `file` with the scene's output fields of `frame`.
+  void write_arrays(const Frame& frame, const std::filesystem::path& file) const;
+  /// Writes frames/frame_<step>.vtu and rewrites frames.pvd.
+  void write_frame(const Frame& frame);
 
   std::filesystem::path dir_;
   std::vector<std::string> fields_;
@@ -64,6 +88,9 @@ class RunOutputs {
   std::unique_ptr<AtomicFile> history_;
   std::vector<std::pair<double, std::string>> frames_;
   bool write_frames_ = true;
+  bool last_frame_only_ = false;
+  bool compress_ = true;
+  std::optional<Frame> kept_;  // last_frame_only: the latest frame, written by finish()
 };
 
 }  // namespace rockdd

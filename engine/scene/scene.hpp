@@ -1,5 +1,5 @@
 #pragma once
-// Scene: the plain data of one TOML scene file (../shared/SCENE.md), validated.
+// Scene: the plain data of one TOML scene file (docs/scene.md), validated.
 // Every optional key that the reader filled with a default is listed in `defaults`.
 #include <array>
 #include <cstdint>
@@ -166,6 +166,10 @@ struct OutputSpec {
   int every = 100;
   std::vector<std::string> fields{"displacement", "velocity", "stress",  "principal",
                                   "damage",       "block",    "material"};
+  bool compress = true;  // VTU frames: zlib-compressed appended data; false: raw
+  /// Not a scene key: rockdd mc sets it so that a realization keeps only its last VTU frame
+  /// (written when the run ends) instead of one every `every` steps.
+  bool last_frame_only = false;
 };
 
 /// The whole scene.

@@ -302,7 +302,8 @@ std::vector<std::string_view> read_probe_target(const TableReader& t, const std:
   }
   probe.kind = ProbeSpec::Kind::line;
   probe.line = read_segment(t);
-  // ux, uy extend SCENE.md's list: displacement interpolated at the sample point.
+  // ux, uy extend the scene contract's list (docs/scene-extensions.md): displacement
+  // interpolated at the sample point.
   return {"sxx", "syy", "sxy", "s1", "s2", "damage", "ux", "uy"};
 }
 
@@ -321,7 +322,7 @@ ProbeSpec read_probe(TableReader& t) {
     const auto samples = t.integer("samples", 2, INT_MAX);
     if (!samples) t.record_default("samples", "101");
     probe.samples = samples ? static_cast<int>(*samples) : 101;
-    // "element" samples the element's constant stress (SCENE.md); "nodal" interpolates
+    // "element" samples the element's constant stress (docs/scene.md); "nodal" interpolates
     // stresses averaged at the nodes, which follows steep gradients better.
     const auto sampling = t.choice("stress", {"element", "nodal"});
     if (!sampling) t.record_default("stress", "element");

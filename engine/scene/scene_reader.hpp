@@ -1,6 +1,6 @@
 #pragma once
 // Reading a scene: TOML text → overrides applied → every key validated → Scene.
-// The schema is ../shared/SCENE.md; any violation is an InputError (exit status 2).
+// The schema is docs/scene.md; any violation is an InputError (exit status 2).
 #include <filesystem>
 #include <string>
 #include <string_view>

@@ -419,7 +419,7 @@ SolverSpec read_solver(TableReader& root) {
 
 OutputSpec read_output(TableReader& root) {
   TableReader table = optional_table(root, "output");
-  table.allow_only({"dir", "every", "fields"});
+  table.allow_only({"dir", "every", "fields", "compress"});
   OutputSpec output;
   if (auto dir = table.string("dir")) {
     output.dir = *dir;
@@ -439,6 +439,9 @@ OutputSpec read_output(TableReader& root) {
         "fields",
         R"(["displacement", "velocity", "stress", "principal", "damage", "block", "material"])");
   }
+  // Not recorded in defaults when left out, like time.max_steps: the scene contract's example
+  // writes every key that has a default, and this one came later.
+  output.compress = table.boolean("compress").value_or(output.compress);
   return output;
 }
 
