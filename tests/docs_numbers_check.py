@@ -6,8 +6,9 @@
 
 - README.md's ensemble: the ```sh block that runs `rockdd mc` and `tools/plot ensemble` is run
   as written (its paths mapped to this build and source tree, its output folder to DIR), and
-  the line `tools/plot ensemble` prints about the peaks must be in README.md verbatim. Six
-  realizations of the paper's compression specimen: about a minute on 2 cores.
+  the line `tools/plot ensemble` prints about the peaks must be in README.md verbatim, its mean
+  and spread in docs/status.md, and seed 1's peak stress in both. Six realizations of the
+  paper's compression specimen: about 2 minutes on 2 cores.
 - README.md's Python snippet runs without an error (with --python, the build's module on
   PYTHONPATH).
 - docs/library.md: the tip displacement the installed examples print (tip_in_tree, the same
@@ -18,12 +19,14 @@ Exit 0 when every check holds, 1 otherwise.
 """
 
 import argparse
+import csv
 import os
 import re
 import shlex
 import shutil
 import subprocess
 import sys
+import tomllib
 
 FAILURES = []
 
@@ -66,6 +69,25 @@ def readme_ensemble(args, readme):
         print(line)
         expect(line in readme, f"README.md does not quote what tools/plot ensemble prints:\n"
                                f"  {line}")
+    # docs/status.md quotes the mean and spread, and both pages seed 1's peak stress (its force
+    # over the specimen's width and thickness, as tools/plot ensemble takes it).
+    with open(os.path.join(args.source, "docs", "status.md"), encoding="utf-8") as f:
+        status = f.read()
+    spread = re.search(r"peak stress (\S+ ± \S+ MPa)", quoted[0] if quoted else "")
+    expect(spread and f"the peak is {spread.group(1)}" in status,
+           f"docs/status.md does not quote the ensemble's {spread and spread.group(1)}")
+    with open(os.path.join(args.source, "data", "uniaxial_compression.toml"), "rb") as f:
+        scene = tomllib.load(f)
+    area = scene["mesh"]["size"][0] * scene["scene"].get("thickness", 1.0)
+    with open(os.path.join(work, "mc", "uniaxial-compression", "mc.csv"), newline="") as f:
+        seed_1 = [r for r in csv.DictReader(f) if r["seed"] == "1"]
+    expect(len(seed_1) == 1, "no row of seed 1 in the README's ensemble")
+    if seed_1:
+        peak = f"{float(seed_1[0]['peaks.top.fy']) / area / 1e6:.3g} MPa"
+        print(f"seed 1: peak stress {peak}")
+        expect(f"seed 1 peaks at {peak}" in readme, f"README.md does not quote seed 1's {peak}")
+        expect(f"peaks at\n  {peak}" in status or f"peaks at {peak}" in status,
+               f"docs/status.md does not quote seed 1's {peak}")
 
 
 def readme_python(args, readme):
