@@ -68,13 +68,16 @@ void Simulation::commit_step(double dt) {
   for (std::size_t d = 0; d < num_dofs; ++d) {
     trial_.reaction[d] = constraint_force(bc_.prescribed[d], trial_.f_int[d], trial_.f_contact[d],
                                           trial_.restraint_force[d], trial_.f_ext[d]);
+    committed_.residual[d] = bc_.prescribed[d] ? 0.0
+                                               : trial_.f_ext[d] - trial_.f_int[d] -
+                                                     trial_.f_contact[d] - trial_.restraint_force[d];
     const double reaction = first_reaction ? trial_.reaction_first[d] : trial_.reaction[d];
     work += 0.5 * (committed_.f_ext[d] + committed_.reaction[d] + trial_.f_ext[d] + reaction) *
             trial_.du[d];
   }
   energy.external_work += work;
+  energy.add(trial_.energy);
   if (damage_) {
-    energy.add(trial_.energy);
     if (!committed_.first_damage) committed_.first_damage = trial_.first_damage;
     // Where the next step's snap-back starts from, when it starts out of balance.
     committed_.stored_energy = strain_energy(model_, model_.strain, model_.stress) +
@@ -173,6 +176,9 @@ void Simulation::recompute_committed_forces() {
     committed_.reaction[d] =
         constraint_force(bc_.prescribed[d], trial_.f_int[d], trial_.f_contact[d],
                          trial_.restraint_force[d], committed_.f_ext[d]);
+    committed_.residual[d] = bc_.prescribed[d] ? 0.0
+                                               : committed_.f_ext[d] - trial_.f_int[d] -
+                                                     trial_.f_contact[d] - trial_.restraint_force[d];
   }
 }
 
@@ -217,9 +223,13 @@ void Simulation::follow_cascade_with_inertia(long step, double time, double end_
 
 EnergyBalance Simulation::energy() const {
   EnergyBalance e;
-  for (std::int32_t n = 0; n < model_.num_nodes(); ++n)
-    e.kinetic += 0.5 * model_.node_mass[n] *
-                 (model_.v[2 * n] * model_.v[2 * n] + model_.v[2 * n + 1] * model_.v[2 * n + 1]);
+  // Without inertia every step starts at rest: the velocity written out is the last step's
+  // mean, and the energy of that motion is the scheme's loss (quasi_static), not held.
+  // A prescribed dof moves as its device says: the device's energy, not the body's (no work of
+  // the impulse that set it going is booked either).
+  if (analysis_ == Analysis::dynamic)
+    for (std::size_t d = 0; d < model_.v.size(); ++d)
+      if (!bc_.prescribed[d]) e.kinetic += 0.5 * model_.node_mass[d / 2] * model_.v[d] * model_.v[d];
   e.strain = strain_energy(model_, model_.strain, model_.stress) +
              (contact_ ? committed_.contact_spring_energy : 0.0);
   const EnergyAccount& account = committed_.energy;
@@ -227,6 +237,9 @@ EnergyBalance Simulation::energy() const {
   e.dissipated = account.damage + (contact_ ? account.friction : 0.0);
   e.snap_back = account.snap_back;
   e.integrator = account.integrator;
+  e.anchor = account.anchor;
+  e.initial = account.initial;
+  e.quasi_static = account.quasi_static;
   return e;
 }
 

@@ -20,6 +20,7 @@
 #include "engine/report/run_result.hpp"
 #include "engine/report/run_summary.hpp"
 #include "engine/solver/linear_system.hpp"
+#include "engine/time/energy_check.hpp"
 #include "engine/time/integrator.hpp"
 #include "engine/time/onset_cuts.hpp"
 #include "engine/time/rotation_correction.hpp"
@@ -75,6 +76,7 @@ Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> me
       analysis_(scene_.analysis),
       integrator_(scene_.time.integrator),
       model_(std::move(model)),
+      energy_check_(scene_.time.energy_tolerance),
       system_(std::make_unique<LinearSystem>(report_.timers, std::move(mesh_slot),
                                              scene_.solver.factor_updates)) {
   ScopedTimer timer(report_.setup_timers.other);
@@ -140,8 +142,14 @@ RunResult Simulation::run(const RunOptions& options) {
     committed_.f_ext[d] = committed_.load_factor * reference_loads_[d];
   compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, trial_.f_int,
                          corotational_);
+  for (std::size_t d = 0; d < model_.X.size(); ++d)
+    committed_.residual[d] = bc_.prescribed[d] ? 0.0 : committed_.f_ext[d] - trial_.f_int[d];
   balance_acceleration();  // no contact force yet: f_contact is zero
   record_committed_state(false);
+  {
+    const EnergyBalance at_start = energy();
+    committed_.energy.initial = at_start.kinetic + at_start.strain;
+  }
   std::vector<double> row;
   // The end on softening (time.stop_at_softening) watches one history column.
   const bool watch_softening = scene_.time.stop_at_softening.has_value();
@@ -182,12 +190,15 @@ RunResult Simulation::run(const RunOptions& options) {
       const long step = counters.steps + 1;
       double dt = onset_damage_next ? 0.0 : control.step_to(end_time - t);
       OnsetCuts cuts(onset_target(scene_.fracture), !stood);
+      const EnergyBalance balance_before = energy();  // of the committed state
+      energy_check_.begin_step();
       for (int retries = 0;;) {
         const Attempt attempt =
             attempt_step(step, retries, t, dt, load_factor(analysis_, t + dt, end_time), control,
                          cuts.may_cut(), onset_damage_next);
-        if (attempt == Attempt::accepted) break;
-        if (attempt == Attempt::cut_at_onset) {
+        if (attempt == Attempt::accepted) {
+          if (commit_checked_step(step, dt, balance_before, control)) break;
+        } else if (attempt == Attempt::cut_at_onset) {
           dt = cuts.next(dt, trial_.onset_fraction, trial_.onset_largest, trial_.damage_passes > 0);
           ++counters.onset_cuts;
           continue;
@@ -202,7 +213,6 @@ RunResult Simulation::run(const RunOptions& options) {
         ++counters.located_onsets;
         control.restart_growth();
       }
-      commit_step(dt);
       for (EventState& state : trial_.events) {
         if (outputs) state.event.frame = outputs->event_frame(state.model, state.event.name);
         if (options.on_event) options.on_event(state.event, state.model);
@@ -256,7 +266,8 @@ RunResult Simulation::run(const RunOptions& options) {
   counters.dt_changes = control.changes();
   result.summary =
       run_summary({scene_, model_, report_, committed_, energy(), contact_.get(), *system_,
-                   bc_.num_equations, result.ok, result.reason, wall, threads, options.setup});
+                   bc_.num_equations, result.ok, result.reason, wall, threads, options.setup,
+                   energy_check_});
   if (outputs) {
     for (const auto& [column, peak] : outputs->peaks()) result.summary["peaks"][column] = peak;
     outputs->finish(result.summary);
@@ -360,6 +371,19 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
         !open_close_iteration(step, retries, inertia, control, factor_current))
       return Attempt::rejected;
     factor_current = false;
+    // Without inertia the first solve ends balanced against its mass term c M du, not at rest,
+    // and starts from the committed state's imbalance: the work of both over du (trapezoidal)
+    // is what the loads did beyond what the body stores, which a dynamic run would turn into
+    // motion and the velocity reset discards. The scheme's own loss, booked by name; the
+    // passes after it, and a first solve that settles damage, book theirs as snap-back.
+    if (pass == 1 && analysis_ == Analysis::quasi_static && !settle_start) {
+      double imbalance_work = 0.0;
+      for (std::size_t d = 0; d < num_dofs; ++d)
+        imbalance_work += committed_.residual[d] * trial_.du[d];
+      trial_.energy.quasi_static =
+          mass_term_energy(inertia.mass_coefficient, trial_.du, bc_.prescribed, model_.node_mass) +
+          0.5 * imbalance_work;
+    }
     if (!damage_) break;
     const double released_before = trial_.energy.damage;
     strain_at_result();
@@ -416,6 +440,34 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
   return increment_acceptable(step, control) ? Attempt::accepted : Attempt::rejected;
 }
 
+bool Simulation::commit_checked_step(long step, double dt, const EnergyBalance& before,
+                                     StepControl& control) {
+  // A step of no length (an onset's damage) cannot be redone shorter: it is measured only.
+  const bool can_redo = dt > 0.0;
+  if (can_redo) {
+    rollback_.committed = committed_;
+    rollback_.u = model_.u;
+    rollback_.v = model_.v;
+    rollback_.contacts_committed_before = contact_ && contact_->committed_before();
+  }
+  commit_step(dt);
+  const EnergyBalance after = energy();
+  const double created = EnergyCheck::created(before, after, trial_.energy.created);
+  std::string why;
+  if (energy_check_.judge(step, created, after, can_redo, why) != EnergyCheck::Verdict::redo) {
+    energy_check_.record(created, after);
+    return true;
+  }
+  // Taken back: the committed state, the motion and the contacts' first commit as they were.
+  std::swap(committed_, rollback_.committed);
+  std::swap(model_.u, rollback_.u);
+  std::swap(model_.v, rollback_.v);
+  if (contact_) contact_->set_committed_before(rollback_.contacts_committed_before);
+  ++report_.counters.redone_by_energy;
+  control.reject(step, why);
+  return false;
+}
+
 bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms& inertia,
                                       StepControl& control, bool factor_current) {
   const std::size_t num_dofs = model_.X.size();
@@ -460,6 +512,7 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
     factor_current = system_->update_contact_springs(switched.added, switched.removed);
     if (iterations >= limit) {
       counters.open_close_iterations += iterations;
+      ++counters.redone_by_open_close;
       control.reject(step, "the open-close iteration did not settle in " + std::to_string(limit) +
                                " iterations");
       return false;
@@ -515,6 +568,7 @@ bool Simulation::increment_acceptable(long step, StepControl& control) {
     char buf[160];
     std::snprintf(buf, sizeof buf,
                   "largest displacement increment %.3g m exceeds max_step_displacement", largest);
+    ++report_.counters.redone_by_displacement;
     control.reject(step, buf);
     return false;
   }
@@ -526,6 +580,7 @@ bool Simulation::increment_acceptable(long step, StepControl& control) {
                   "largest displacement increment %.3g m exceeds the contact search distance "
                   "%.3g m (time.max_step_displacement sets another limit)",
                   largest, contact_->parameters().reach);
+    ++report_.counters.redone_by_displacement;
     control.reject(step, buf);
     return false;
   }

@@ -21,6 +21,7 @@
 #include "engine/scene/scene.hpp"
 #include "engine/state/committed_state.hpp"
 #include "engine/state/step_state.hpp"
+#include "engine/time/energy_check.hpp"
 
 namespace rockdd {
 
@@ -31,7 +32,6 @@ class LinearSystem;
 class StepControl;
 struct SolverStats;
 struct DamageChange;
-struct EnergyBalance;
 struct RunResult;  // engine/report/run_result.hpp
 struct InertiaTerms;
 
@@ -123,6 +123,11 @@ class Simulation {
   /// The model's working fields, the restraint and the trial state as the attempt starts:
   /// the committed state's, whatever an earlier attempt left.
   void begin_attempt(double time, double load_factor);
+  /// Commits an accepted attempt of length dt unless the energy check rejects it: then the
+  /// commit is taken back, dt halved (throws RunFailure below dt_min) and false returned.
+  /// `before`: the balance of the committed state the attempt started from.
+  bool commit_checked_step(long step, double dt, const EnergyBalance& before,
+                           StepControl& control);
   /// The open-close iteration of one step from the trial state; false when it did not settle.
   /// `factor_current`: the factor already holds this step's system (a folded damage pass).
   bool open_close_iteration(long step, int retries, const InertiaTerms& inertia,
@@ -214,6 +219,13 @@ class Simulation {
   StepState trial_;              // the step being attempted
   CommittedState committed_;     // what every attempt starts from
   RunReport report_;             // counters, timers and monitors, for summary.json
+  EnergyCheck energy_check_;     // time.energy_tolerance: what a step may create
+  /// What commit_step changes, kept so that a step the energy check rejects is taken back.
+  struct Rollback {
+    CommittedState committed;
+    std::vector<double> u, v;
+    bool contacts_committed_before = false;
+  } rollback_;
   std::function<void(const AttemptReport&, const Model&)> on_attempt_;  // RunOptions'
   // Declared after the timers it adds to; its destructor waits for a running analysis.
   std::unique_ptr<LinearSystem> system_;

@@ -70,7 +70,8 @@ TEST(CommandLine, RunWritesEveryPromisedOutput) {
   const std::string history = test::read_text(dir / "history.csv");
   EXPECT_EQ(history.substr(0, history.find('\n')),
             "step,time,dt,tip.ux,tip.uy,support.fx,support.fy,energy.kinetic,energy.strain,"
-            "energy.external_work,energy.dissipated,energy.snap_back,energy.integrator");
+            "energy.external_work,energy.dissipated,energy.snap_back,energy.integrator,"
+            "energy.anchor_work,energy.quasi_static_loss,energy.unaccounted");
   EXPECT_EQ(std::count(history.begin(), history.end(), '\n'), 4);  // header + steps 0, 1, 2
   for (const char* frame : {"frame_00000.vtu", "frame_00001.vtu", "frame_00002.vtu"})
     EXPECT_TRUE(std::filesystem::exists(dir / "frames" / frame)) << frame;

@@ -68,6 +68,7 @@ TEST(SceneReader, ReadsEveryFieldOfTheExample) {
   ASSERT_TRUE(s.time.max_step_displacement.has_value());
   EXPECT_DOUBLE_EQ(*s.time.max_step_displacement, 1e-3);
   EXPECT_DOUBLE_EQ(s.time.dt_max, 1e-3);
+  EXPECT_DOUBLE_EQ(s.time.energy_tolerance, 2e-3);
   EXPECT_EQ(s.time.integrator, Integrator::dda);
 
   EXPECT_EQ(s.mesh.kind, MeshSpec::Kind::geo);
@@ -192,6 +193,7 @@ TEST(SceneReader, StaticSceneWithoutTimeRunsOneStepAndRecordsEveryDefault) {
       {"time.steps", "1"},
       {"time.dt_min", "1e-06"},
       {"time.dt_max", "1"},
+      {"time.energy_tolerance", "0.001"},
       {"time.integrator", "dda"},
       {"mesh.origin", "[0, 0]"},
       {"material[0].body", "*"},

@@ -403,6 +403,10 @@ int run(const Options& o, std::optional<double> startup) {
   progress.finish();
   const auto out_dir =
       (options.out_root.empty() ? scene.output.dir : options.out_root) / scene.name;
+  // A balance that does not close is said even when quiet: the answer may be wrong.
+  if (const auto& check = result.summary["energy_check"]; check.contains("warning"))
+    std::cerr << "rockdd: warning: " << check["warning"].get<std::string>()
+              << " (summary.json energy, energy_check)\n";
   if (!result.ok) {
     std::cerr << "rockdd: run failed: " << result.reason << "\n  outputs so far in "
               << out_dir.string() << "\n";

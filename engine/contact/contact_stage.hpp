@@ -73,6 +73,11 @@ class ContactStage {
   /// would count twice with the step's slip.
   void add_committed_forces(std::span<const double> positions, std::span<double> force) const;
 
+  /// Whether a step has been committed (contacts that form after it are not bonded), and
+  /// setting it back for a commit that was taken back.
+  bool committed_before() const { return started_; }
+  void set_committed_before(bool committed) { started_ = committed; }
+
   /// Sets `node_mask[n]` to 1 for every node (vertex or edge end) of a closed contact.
   void mark_touching_nodes(std::span<std::uint8_t> node_mask) const;
 

@@ -52,7 +52,7 @@ RunOutputs::RunOutputs(const Scene& scene, const std::filesystem::path& dir,
   out << "step,time,dt";
   for (const auto& c : columns_) out << ',' << c;
   out << ",energy.kinetic,energy.strain,energy.external_work,energy.dissipated,energy.snap_back,"
-         "energy.integrator\n";
+         "energy.integrator,energy.anchor_work,energy.quasi_static_loss,energy.unaccounted\n";
 }
 
 RunOutputs::~RunOutputs() = default;
@@ -75,7 +75,8 @@ void RunOutputs::history_row(long step, double time, double dt,
     peak = std::max(peak, std::abs(probe_values[i]));
   }
   for (const double e : {energy.kinetic, energy.strain, energy.external_work, energy.dissipated,
-                         energy.snap_back, energy.integrator})
+                         energy.snap_back, energy.integrator, energy.anchor, energy.quasi_static,
+                         energy.unaccounted()})
     out << ',' << format_number(e);
   out << '\n';
   if (row_observer) row_observer(step, columns_, probe_values);

@@ -25,6 +25,16 @@ struct EnergyBalance {
   double kinetic = 0, strain = 0, external_work = 0, dissipated = 0;
   double snap_back = 0;   // released by re-settling after damage, without inertia (J)
   double integrator = 0;  // damped by the time integrator, with inertia (J)
+  double anchor = 0;      // held by the fragment restraint when steps ended (J)
+  double quasi_static = 0;  // taken by the mass term of steps without inertia (J)
+  double initial = 0;       // kinetic and strain energy at step 0 (J)
+
+  /// The energy put in (the initial energy and the work) less everything it went into: what
+  /// the balance does not account for (J).
+  double unaccounted() const {
+    return initial + external_work - kinetic - strain - dissipated - snap_back - integrator - anchor -
+           quasi_static;
+  }
 };
 
 /// Writes the run's files; history.csv appears only through finish(): a run that dies

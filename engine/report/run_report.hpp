@@ -12,7 +12,10 @@ namespace rockdd {
 /// Counters of one run.
 struct RunStats {
   long steps = 0;                     // committed steps
-  long redone_steps = 0;              // attempts redone with a smaller dt
+  long redone_steps = 0;              // attempts redone with a smaller dt, for any of:
+  long redone_by_open_close = 0;      //   the open-close iteration did not settle
+  long redone_by_displacement = 0;    //   an increment past max_step_displacement or the reach
+  long redone_by_energy = 0;          //   the step created energy (EnergyCheck)
   long onset_cuts = 0;                // attempts cut back to the first onset they passed
   long located_onsets = 0;            // steps that ended at an onset (each followed by one of
                                       // no length, where that onset's damage runs)

@@ -23,6 +23,9 @@ const char* analysis_name(Analysis a) {
 void write_counters(const RunStats& c, nlohmann::json& s) {
   s["steps"] = c.steps;
   s["redone_steps"] = c.redone_steps;
+  s["redone_by"] = {{"open_close", c.redone_by_open_close},
+                    {"displacement", c.redone_by_displacement},
+                    {"energy", c.redone_by_energy}};
   s["onset_cuts"] = c.onset_cuts;
   s["located_onsets"] = c.located_onsets;
   s["dt_changes"] = c.dt_changes;
@@ -135,7 +138,8 @@ nlohmann::json run_summary(const RunSummaryInputs& in) {
     // over measures the scheme's own losses (contact reset, step relinearisation).
     const EnergyBalance& e = in.balance;
     const EnergyAccount& account = in.committed.energy;
-    s["energy"] = {{"external_work", e.external_work},
+    s["energy"] = {{"initial", e.initial},
+                   {"external_work", e.external_work},
                    {"kinetic", e.kinetic},
                    {"strain", e.strain},
                    {"damage_dissipation", account.damage},
@@ -144,8 +148,19 @@ nlohmann::json run_summary(const RunSummaryInputs& in) {
                    {"created_by_resolves", account.created},
                    {"anchor_work", account.anchor},
                    {"integrator_dissipation", account.integrator},
-                   {"unaccounted", e.external_work - e.kinetic - e.strain - e.dissipated -
-                                       e.snap_back - account.anchor - e.integrator}};
+                   {"quasi_static_loss", account.quasi_static},
+                   {"unaccounted", e.unaccounted()}};
+    // The share every figure is measured against, and what the step control's check saw.
+    const double scale = EnergyCheck::scale(e);
+    const std::string open = energy_balance_warning(e, kEnergyBalanceShare, in.energy_check);
+    s["energy_check"] = {{"scale", scale},
+                         {"tolerance", in.energy_check.tolerance()},
+                         {"created", in.energy_check.total_created()},
+                         {"largest_step_created_share", in.energy_check.largest_share()},
+                         {"redone_steps", in.energy_check.rejected()},
+                         {"unresolved_steps", in.energy_check.unresolved()},
+                         {"balance_closes", open.empty()}};
+    if (!open.empty()) s["energy_check"]["warning"] = open;
   }
   s["damaged_elements"] =
       std::count_if(model.damage.begin(), model.damage.end(), [](double w) { return w > 0; });

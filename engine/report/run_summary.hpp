@@ -15,6 +15,7 @@
 #include "engine/solver/cholmod_solver.hpp"
 #include "engine/solver/linear_system.hpp"
 #include "engine/state/committed_state.hpp"
+#include "engine/time/energy_check.hpp"
 
 namespace rockdd {
 
@@ -35,6 +36,7 @@ struct RunSummaryInputs {
   double wall_seconds = 0.0;
   int threads = 0;
   const std::optional<SetupReport>& setup;  // what came before the Simulation, when measured
+  const EnergyCheck& energy_check;          // what the steps created, and what it rejected
 };
 
 /// The summary.json of a run (peaks and outputs' own keys are added by RunOutputs).

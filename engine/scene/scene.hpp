@@ -28,6 +28,10 @@ using Vec2 = std::array<double, 2>;
 /// exponent far more often than a plan, and one that means it says so with time.max_steps.
 inline constexpr std::int64_t kDefaultMaxSteps = 10'000'000;
 
+/// time.energy_tolerance's default: chosen by measurement (docs/method-choices.md, "Energy
+/// check").
+inline constexpr double kDefaultEnergyTolerance = 1e-3;
+
 /// [time]: first dt, end time or step count, and step control.
 struct TimeSpec {
   double dt = 1.0;                              // s (1 in a static scene without [time])
@@ -37,6 +41,8 @@ struct TimeSpec {
   double dt_min = 0.0;                          // s; 0 = dt * 1e-6 (default chosen)
   std::optional<double> max_step_displacement;  // m
   double dt_max = 0.0;                          // s; default = dt
+  // The energy one step may create, as a share of the run's energy scale (EnergyCheck).
+  double energy_tolerance = kDefaultEnergyTolerance;
   Integrator integrator = Integrator::dda;
   // Optional end on softening: the run stops once the history column `softening_probe`
   // ("<probe>.<field>") has fallen `stop_at_softening` (a fraction) below its peak magnitude.

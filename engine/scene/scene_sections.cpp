@@ -269,7 +269,7 @@ TimeSpec read_time(TableReader& root, Analysis analysis) {
   }
   TableReader table = optional_table(root, "time");
   table.allow_only({"dt", "end", "steps", "max_steps", "dt_min", "max_step_displacement", "dt_max",
-                    "integrator", "stop_at_softening", "softening_probe"});
+                    "integrator", "stop_at_softening", "softening_probe", "energy_tolerance"});
   TimeSpec time;
   time.dt =
       is_static ? table.number_or("dt", 1.0, above(0)) : table.required_number("dt", above(0));
@@ -299,6 +299,8 @@ TimeSpec read_time(TableReader& root, Analysis analysis) {
     table.fail("dt_max",
                "expected a number >= time.dt = " + dt + ", got " + describe(*table.find("dt_max")));
   }
+  time.energy_tolerance =
+      table.number_or("energy_tolerance", kDefaultEnergyTolerance, between(0.0, false, 1.0, true));
   time.integrator = table.choice_or("integrator", {"dda", "newmark"}, "dda") == "newmark"
                         ? Integrator::newmark
                         : Integrator::dda;

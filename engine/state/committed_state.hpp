@@ -22,6 +22,10 @@ struct CommittedState {
   // Per dof: the loads and the constraints' force, and Newmark's acceleration (0 without
   // inertia).
   std::vector<double> f_ext, reaction, acceleration;
+  // Per dof: what the free dofs are out of balance by (f_ext - f_int - f_contact - restraint;
+  // 0 on prescribed ones). Without inertia a step ends balanced against its mass term, not
+  // at rest, and a load applied at once starts out of balance: the next step's loss.
+  std::vector<double> residual;
   double load_factor = 0.0;
   // Elements' and contact springs' elastic energy: where a step that starts out of balance
   // measures its snap-back from.

@@ -58,4 +58,13 @@ double update_velocity(Analysis analysis, Integrator integrator, double dt,
   return damped;
 }
 
+double mass_term_energy(double mass_coefficient, std::span<const double> du,
+                        std::span<const std::uint8_t> prescribed,
+                        std::span<const double> node_mass) {
+  double energy = 0.0;  // serially in dof order: the total must not depend on threads
+  for (std::size_t d = 0; d < du.size(); ++d)
+    if (!prescribed[d]) energy += node_mass[d / 2] * du[d] * du[d];
+  return 0.5 * mass_coefficient * energy;
+}
+
 }  // namespace rockdd

@@ -33,4 +33,11 @@ double update_velocity(Analysis analysis, Integrator integrator, double dt,
                        std::span<const double> imposed_velocity, std::span<const double> node_mass,
                        std::span<double> v, std::span<double> a);
 
+/// The energy a step's mass term c M holds at increment du: (c/2) sum m du^2 over the free
+/// dofs. Without inertia it is the work the step's loads did beyond what the body stores,
+/// which the next step, starting at rest, discards.
+double mass_term_energy(double mass_coefficient, std::span<const double> du,
+                        std::span<const std::uint8_t> prescribed,
+                        std::span<const double> node_mass);
+
 }  // namespace rockdd
