@@ -75,6 +75,12 @@ std::string energy_balance_warning(const EnergyBalance& balance, double share,
                   100.0 * unaccounted / s);
     terms += buf;
   }
+  if (check.total_created() > share * s) {
+    std::snprintf(buf, sizeof buf, "%s%.4g J created over the steps (%.3g %%)",
+                  terms.empty() ? "" : " and ", check.total_created(),
+                  100.0 * check.total_created() / s);
+    terms += buf;
+  }
   if (balance.anchor > share * s) {
     std::snprintf(buf, sizeof buf, "%s%.4g J held by the fragment restraint (%.3g %%)",
                   terms.empty() ? "" : " and ", balance.anchor, 100.0 * balance.anchor / s);

@@ -66,9 +66,9 @@ class EnergyCheck {
   double worst_unresolved_share_ = 0.0;
 };
 
-/// The end of a run's balance: empty when it closes (|unaccounted| and the restraint's work
-/// each within `share` of the scale, and no step created more than `check` allows), else a
-/// sentence that says what stays open.
+/// The end of a run's balance: empty when it closes (|unaccounted|, what the steps created in
+/// all and the restraint's work each within `share` of the scale, and no step created more
+/// than `check` allows), else a sentence that says what stays open.
 std::string energy_balance_warning(const EnergyBalance& balance, double share,
                                    const EnergyCheck& check);
 
