@@ -2,6 +2,7 @@
 // step is redone for it, the quasi-static scheme's own loss, and the end-of-run warning.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -147,7 +148,8 @@ TEST(EnergyCheck, FrictionalInclineAtTenMillisecondsCreatesLessThanOnePercentASt
   const double th = std::numbers::pi / 6, phi = std::numbers::pi / 12, g = 10.0;
   const double t = h.at("time").back();
   const double s = 0.5 * g * (std::sin(th) - std::tan(phi) * std::cos(th)) * t * t;
-  const double along = h.at("block2.ux").back() * std::cos(th) - h.at("block2.uy").back() * std::sin(th);
+  const double along =
+      h.at("block2.ux").back() * std::cos(th) - h.at("block2.uy").back() * std::sin(th);
   EXPECT_NEAR(along, s, 0.01 * s);
 }
 
@@ -168,12 +170,59 @@ TEST(EnergyCheck, RunWhoseStepCannotBeCutFarEnoughFailsNamingTheStepAndTheEnergy
 
 TEST(EnergyCheck, ToleranceOutOfRangeIsRefused) {
   test::TempDir dir;
-  const auto r = test::rockdd_cli(
-      "run " + test::data_file("verification/frictional_incline.toml").string() +
-          " --set time.energy_tolerance=0 --out out",
-      dir.path());
+  const auto r =
+      test::rockdd_cli("run " + test::data_file("verification/frictional_incline.toml").string() +
+                           " --set time.energy_tolerance=0 --out out",
+                       dir.path());
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("energy_tolerance"), std::string::npos) << r.output;
+}
+
+TEST(TopplingBlock, TallTopplesLandsOnItsSideAndIsNotThrownBack) {
+  // data/toppling_block.toml: b / h = 0.25 < tan 20 deg = 0.364, so the block turns about its
+  // downhill corner and lands on its long side, a quarter turn (rotation -pi/2 to 0.01 rad),
+  // and the joint's friction (40 deg) holds it there. The landing is the step of the most
+  // kinetic energy; after it the block must not be thrown (the engine of 26 November threw it
+  // back up the slope with 2,565 J from 8.9 J): its mean displacement down the slope never
+  // falls back by more than 1 mm from where it landed, and once at rest stays there. The balance of
+  // the impact is open (issue 30, docs/method-choices.md "Energy check"): a step creates up to 1.8
+  // % of the work however short (the check's unresolved steps) and 3 % stays unaccounted; held here
+  // to 2.5 % a step, so that it does not grow unseen.
+  const auto run = test::run_data_scene("toppling_block.toml", {"output.every=0"});
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& h = run.history;
+  const auto& rotation = h.at("block.rotation");
+  const auto& kinetic = h.at("energy.kinetic");
+  EXPECT_NEAR(rotation.back(), -std::numbers::pi / 2, 0.01);
+  const std::size_t landing =
+      static_cast<std::size_t>(std::max_element(kinetic.begin(), kinetic.end()) - kinetic.begin());
+  ASSERT_GT(landing, 0u);
+  ASSERT_LT(landing + 1, kinetic.size());
+  const double peak = kinetic[landing];
+  // Down the slope is (cos 20, -sin 20): the block's mean displacement along it.
+  const double slope = 20.0 * std::numbers::pi / 180.0;
+  auto downhill = [&](std::size_t i) {
+    return h.at("block.ux")[i] * std::cos(slope) - h.at("block.uy")[i] * std::sin(slope);
+  };
+  for (std::size_t i = landing; i < kinetic.size(); ++i)
+    EXPECT_GE(downhill(i), downhill(landing) - 1e-3) << "row " << i;
+  EXPECT_LT(kinetic.back(), 1e-6 * peak);  // at rest on its side
+  EXPECT_LE(run.result.summary["energy_check"]["largest_step_created_share"].get<double>(), 0.025);
+}
+
+TEST(TopplingBlock, SquatStands) {
+  // The same block 1.0 m wide (data/toppling_block_squat.geo): b / h = 0.625 > tan 20 deg, its
+  // centre of mass uphill of its downhill corner, so it stands: at 2 s turned by less than
+  // 1e-3 rad and moved less than 0.1 mm (measured 9e-6 rad, 6 um), its balance closed.
+  const auto run = test::run_data_scene("toppling_block.toml",
+                                        {"output.every=0", "mesh.geo=toppling_block_squat.geo"});
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& h = run.history;
+  EXPECT_LT(std::abs(h.at("block.rotation").back()), 1e-3);
+  EXPECT_LT(std::abs(h.at("block.ux").back()), 1e-4);
+  EXPECT_LT(std::abs(h.at("block.uy").back()), 1e-4);
+  EXPECT_TRUE(run.result.summary["energy_check"]["balance_closes"].get<bool>())
+      << run.result.summary["energy_check"].dump();
 }
 
 }  // namespace

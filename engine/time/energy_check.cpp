@@ -87,8 +87,10 @@ std::string energy_balance_warning(const EnergyBalance& balance, double share,
     terms += buf;
   }
   if (!terms.empty()) {
-    std::snprintf(buf, sizeof buf, " of the run's scale %.4g J: the energy balance does not "
-                  "close to %g %%", s, 100.0 * share);
+    std::snprintf(buf, sizeof buf,
+                  " of the run's scale %.4g J: the energy balance does not "
+                  "close to %g %%",
+                  s, 100.0 * share);
     open += terms + buf;
   } else if (!open.empty()) {
     open.resize(open.size() - 2);  // the "; " after the steps
