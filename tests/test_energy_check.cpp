@@ -94,9 +94,9 @@ TEST(QuasiStaticLoss, LoadAppliedAtOnceLosesWhatTheBodyDoesNotStore) {
   // A load F held on a linear body from rest does work F u on its way to u = K^-1 F and the
   // body stores F u / 2 (Clapeyron): without inertia the other half is the scheme's loss
   // (each step starts at rest), energy.quasi_static_loss = W / 2 to 1e-6 once settled, and
-  // nothing is left unaccounted but the co-rotated strain's departure from linearity, of the
-  // order of the strain (1e-4 here): 1e-5 of the work allowed, 6e-7 measured. Kinetic energy
-  // is 0: no motion is held.
+  // nothing is left unaccounted but the co-rotated strain's departure from linearity, which
+  // scales with the load: measured 6.0e-7, 6.0e-8, 6.0e-9 of the work at 1, 0.1, 0.01 MPa;
+  // 2e-6 allowed. Kinetic energy is 0: no motion is held.
   const auto run = test::run_scene_text(plate_under_held_load());
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   const auto& e = run.result.summary["energy"];
@@ -104,13 +104,13 @@ TEST(QuasiStaticLoss, LoadAppliedAtOnceLosesWhatTheBodyDoesNotStore) {
   ASSERT_GT(work, 0.0);
   EXPECT_NEAR(e["strain"].get<double>(), 0.5 * work, 1e-6 * work);
   EXPECT_NEAR(e["quasi_static_loss"].get<double>(), 0.5 * work, 1e-6 * work);
-  EXPECT_LT(std::abs(e["unaccounted"].get<double>()), 1e-5 * work);
+  EXPECT_LT(std::abs(e["unaccounted"].get<double>()), 2e-6 * work);
   EXPECT_EQ(e["kinetic"].get<double>(), 0.0);
   EXPECT_TRUE(run.result.summary["energy_check"]["balance_closes"].get<bool>());
   // history.csv carries the balance per row, the remainder included.
   const auto& unaccounted = run.history.at("energy.unaccounted");
   ASSERT_EQ(unaccounted.size(), 7u);
-  for (const double u : unaccounted) EXPECT_LT(std::abs(u), 1e-5 * work);
+  for (const double u : unaccounted) EXPECT_LT(std::abs(u), 2e-6 * work);
 }
 
 TEST(QuasiStaticLoss, TheLoadHeldDiskClosesItsBalance) {
