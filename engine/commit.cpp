@@ -101,6 +101,7 @@ void Simulation::record_committed_state(bool detached) {
     system_->invalidate();
   }
   trial_.restraint_grown = false;
+  fragments_.restart();  // the next step's springs hold from where it starts
   committed_.restraint = fragments_;
 }
 

@@ -2,6 +2,8 @@
 // each solve, the re-solve's preparation when elements newly damage, and the energy the passes
 // release (damage and snap-back).
 #include <algorithm>
+#include <cmath>
+#include <limits>
 
 #include "engine/assembly/internal_force.hpp"
 #include "engine/assembly/modulus_change.hpp"
@@ -11,8 +13,19 @@
 #include "engine/damage/damage_stage.hpp"
 #include "engine/simulation.hpp"
 #include "engine/solver/linear_system.hpp"
+#include "engine/time/step_control.hpp"
 
 namespace rockdd {
+
+namespace {
+// The restraint relaxes when its springs hold more than this share of the stored energy (a
+// tenth of what the energy balance may leave open), down to kRestraintRelaxed of it.
+constexpr double kRestraintRelaxationTrigger = 1e-3;
+constexpr double kRestraintRelaxed = 1e-6;
+// Relaxations go on while each leaves the springs less than this share of what they held.
+constexpr double kRelaxationFall = 0.5;
+constexpr int kMaxRestraintRelaxations = 30;
+}  // namespace
 
 void Simulation::strain_at_result() {
   ScopedTimer timer(report_.timers.damage);
@@ -160,6 +173,61 @@ bool Simulation::hold_parts_cut_loose() {
   fragments_.forces(trial_increment, trial_.restraint_force);
   system_->invalidate();  // K takes the new springs
   return true;
+}
+
+void Simulation::relax_restraint(long step, int retries, const InertiaTerms& inertia,
+                                 const StepControl& control) {
+  if (fragments_.num_dofs() == 0) return;
+  const std::size_t num_dofs = model_.X.size();
+  double held = fragments_.energy(trial_.du);
+  if (held <= 0.0) return;
+  const double stored = stored_energy();
+  if (held <= kRestraintRelaxationTrigger * stored) return;
+  const double floor = kRestraintRelaxed * stored;
+  const double reach = contact_ && !scene_.time.max_step_displacement
+                           ? contact_->parameters().reach
+                           : std::numeric_limits<double>::infinity();
+  const auto set_restraint_force = [&] {
+    for (std::size_t d = 0; d < num_dofs; ++d)
+      trial_.positions[d] = trial_.u_trial[d] - model_.u[d];  // the trial increment
+    fragments_.forces(trial_.positions, trial_.restraint_force);
+  };
+  for (int i = 0; i < kMaxRestraintRelaxations && held > floor; ++i) {
+    const FragmentRestraint before = fragments_;
+    const std::vector<double> du_before = trial_.du;
+    std::vector<Contact> contacts_before;
+    std::vector<ContactSprings> springs_before;
+    if (contact_) {
+      contacts_before = contact_->contacts();
+      springs_before = contact_->springs();
+    }
+    fragments_.follow(trial_.du);
+    set_restraint_force();
+    const bool settled = open_close_iteration(step, retries, inertia, nullptr, true);
+    ++report_.counters.restraint_relaxations;
+    double largest = 0.0;
+    for (const double du : trial_.du) largest = std::max(largest, std::abs(du));
+    const double now = fragments_.energy(trial_.du);
+    // What the springs hold that does not fall when they let go is a part that only they
+    // hold (a mechanism a force drives), and a part that would leave the step's reach must
+    // not: both stay where the springs held them.
+    if (!settled || now >= kRelaxationFall * held || !control.displacement_ok(largest) ||
+        largest > reach) {
+      // Taken back exactly: a re-solve could settle the contacts elsewhere.
+      fragments_ = before;
+      set_restraint_force();
+      trial_.du = du_before;
+      if (contact_) {
+        const bool switched = contact_->springs() != springs_before;
+        contact_->restore_contacts(std::move(contacts_before));
+        // The factor holds the springs the relaxation switched: back to the earlier ones.
+        if (switched)
+          system_->add_contact_springs(contact_->spring_matrices(model_.num_elements()), false);
+      }
+      break;
+    }
+    held = now;
+  }
 }
 
 }  // namespace rockdd

@@ -128,10 +128,11 @@ class Simulation {
   /// `before`: the balance of the committed state the attempt started from.
   bool commit_checked_step(long step, double dt, const EnergyBalance& before,
                            StepControl& control);
-  /// The open-close iteration of one step from the trial state; false when it did not settle.
-  /// `factor_current`: the factor already holds this step's system (a folded damage pass).
+  /// The open-close iteration of one step from the trial state; false when it did not settle
+  /// (and then, given a `control`, the step is rejected there). `factor_current`: the factor
+  /// already holds this step's system (a folded damage pass).
   bool open_close_iteration(long step, int retries, const InertiaTerms& inertia,
-                            StepControl& control, bool factor_current);
+                            StepControl* control, bool factor_current);
   /// One solve of the open-close iteration: contact springs, factorization (unless
   /// `factor_current`), solve; fills the trial's du.
   void solve_iteration(long step, const InertiaTerms& inertia, bool factor_current);
@@ -173,6 +174,17 @@ class Simulation {
   /// only they joined to what holds it is loose until the step ends and detaches them, so the
   /// fragment restraint is rebuilt over the parts. True when the springs changed.
   bool hold_parts_cut_loose();
+  /// Without inertia, after a solve that settles the committed state's imbalance or a damage
+  /// pass: when the fragment restraint's springs hold more than kRestraintRelaxationTrigger of
+  /// the stored energy, they are re-anchored where the solve left the parts and the open-close
+  /// iteration solves again (on the same factor), until they hold less than kRestraintRelaxed
+  /// of it, so that the parts end where their contacts and the rock balance them, not held
+  /// back towards where the step started. A relaxation is taken back exactly (increment,
+  /// contacts, anchors) when what the springs hold does not halve (a part only they hold),
+  /// when the increment would pass its limits, or when its open-close iteration does not
+  /// settle (docs/method-choices.md, "Restraint relaxation").
+  void relax_restraint(long step, int retries, const InertiaTerms& inertia,
+                       const StepControl& control);
 
   // The commit and what follows it (commit.cpp).
   /// Velocity, rotations of free blocks, u, stresses, contacts, reactions and work.

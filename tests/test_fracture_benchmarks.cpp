@@ -542,10 +542,11 @@ TEST(NotchedBeam, PeakDoesNotMoveWithTheLoadStepAndTheCrackRunsFromTheNotch) {
   // (events.first_separation). Measured: peaks 1,329.6, 1,329.3, 1,329.3, 1,331.8 N
   // (0.19 %), 60 elements damaged, all within 5 mm of midspan. Run by whole steps
   // (fracture.locate_onsets = false, growth_tolerance = 0) the peak moves with the load step
-  // (docs/convergence.md, "Notched beam"). Not required here: the energy balance, which
-  // leaves 0.005, 0.001, 2.5 and 3.2 % of the work unaccounted and 8.8 % (at dt) to the
-  // fragment restraint once the crack has cut the beam (issue 30: a broken beam is a
-  // mechanism that the restraint holds).
+  // (docs/convergence.md, "Notched beam"). The energy balance closes at every dt (issue 30;
+  // checked at dt by AfterTheBreakTheLoadStaysDownAndTheRestraintHoldsNoWork): unaccounted
+  // 0.003, 0.001, 0.001 and 0.009 % of the work, the restraint 0.0001-0.025 % (before it
+  // relaxed in settling solves: 2.4 and 2.7 % unaccounted at dt / 2 and dt / 4, 8.3-8.9 %
+  // held by the restraint).
   std::vector<double> peaks;
   for (const char* dt : {"1e-2", "5e-3", "2.5e-3", "1.25e-3"}) {
     SCOPED_TRACE(std::string("time.dt=") + dt);
@@ -557,6 +558,43 @@ TEST(NotchedBeam, PeakDoesNotMoveWithTheLoadStepAndTheCrackRunsFromTheNotch) {
   }
   const auto [low, high] = std::minmax_element(peaks.begin(), peaks.end());
   EXPECT_LT(*high - *low, 0.01 * *low);
+}
+
+TEST(NotchedBeam, AfterTheBreakTheLoadStaysDownAndTheRestraintHoldsNoWork) {
+  // Issue 30: once the ligament under the pad breaks, the half on the roller (free in x) is a
+  // mechanism that only the fragment restraint holds. Run 0.4 s (40 um of pad travel, 80
+  // steps) past the scene's 95 % load drop: after the break the pad force stays below 5 % of
+  // the peak (Required), and the restraint's work plus |unaccounted| is at most 1 % of the
+  // external work (the issue's bound). Measured: the force falls from 780 N to 17 N in the
+  // breaking step and stays within 0.03 N after it; the restraint holds 1.3e-7 J of 0.058 J
+  // (it held 5.1e-3 J, 8.8 %, before it relaxed in settling solves: the half settled against
+  // it over three steps), unaccounted 3.4e-7 J.
+  Scene scene =
+      read_scene(test::data_file("notched_beam_bending.toml"), {"output.every=0", "time.end=1.2"});
+  scene.time.stop_at_softening.reset();
+  scene.time.softening_probe.clear();
+  test::TempDir dir;
+  const test::SceneRun run = test::run_scene(scene, dir.path(), 1);
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& force = run.history.at("pad.fy");
+  double peak = 0.0;
+  std::size_t peak_row = 0;
+  for (std::size_t i = 0; i < force.size(); ++i)
+    if (std::abs(force[i]) > peak) {
+      peak = std::abs(force[i]);
+      peak_row = i;
+    }
+  // The break: the first row after the peak below 5 % of it.
+  std::size_t broken = peak_row;
+  while (broken < force.size() && std::abs(force[broken]) >= 0.05 * peak) ++broken;
+  ASSERT_LT(broken + 50, force.size()) << "no break 50 rows before the end";
+  for (std::size_t i = broken; i < force.size(); ++i)
+    EXPECT_LT(std::abs(force[i]), 0.05 * peak) << "row " << i;
+  const auto& energy = run.result.summary.at("energy");
+  const double work = energy.at("external_work").get<double>();
+  EXPECT_LE(
+      energy.at("anchor_work").get<double>() + std::abs(energy.at("unaccounted").get<double>()),
+      0.01 * work);
 }
 
 TEST(CrackBand, ElementsTooWideForTheirFractureEnergyAreRefused) {

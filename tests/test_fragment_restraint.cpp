@@ -101,5 +101,36 @@ TEST(FragmentRestraint, SpringsAddedInsideAStepStartFromWhereTheyWereAdded) {
   EXPECT_NEAR(*std::max_element(force.begin(), force.end()), 2e9 * 1e-6, 1e-6);
 }
 
+TEST(FragmentRestraint, FollowingHoldsThePartsWhereTheyAreAndRestartHoldsFromTheStepStart) {
+  // relax_restraint re-anchors every spring where a settling solve left the parts: no force
+  // and no energy at that increment, k (du' - du) past it; the commit then restarts them from
+  // the step's start (force k du'). Exact: the springs are linear.
+  Model m = strip({3e9, 3e9, 3e9, 3e9});
+  BoundaryConditions bc;
+  bc.prescribed.assign(12, 0);
+  bc.velocity.assign(12, 0.0);
+  bc.equation.resize(12);
+  for (std::size_t d = 0; d < 12; ++d) bc.equation[d] = bc.num_equations++;
+  FragmentRestraint restraint(m, bc, 1e-6);
+  const FragmentRestraint fresh = restraint;
+  const std::vector<double> k = springs(fresh);  // from unit increments, anchors at 0
+  std::vector<double> du(12);
+  for (std::size_t d = 0; d < 12; ++d) du[d] = 1e-5 * static_cast<double>(d + 1);
+  restraint.follow(du);
+  EXPECT_TRUE(restraint.same_springs(fresh));
+  std::vector<double> force(12, 1.0);
+  restraint.forces(du, force);
+  for (const double f : force) EXPECT_EQ(f, 0.0);
+  EXPECT_EQ(restraint.energy(du), 0.0);
+  std::vector<double> moved = du;
+  moved[8] += 2e-6;
+  restraint.forces(moved, force);
+  EXPECT_DOUBLE_EQ(force[8], k[8] * ((du[8] + 2e-6) - du[8]));
+  restraint.restart();
+  EXPECT_EQ(restraint, fresh);
+  restraint.forces(du, force);
+  EXPECT_DOUBLE_EQ(force[8], k[8] * du[8]);
+}
+
 }  // namespace
 }  // namespace rockdd

@@ -12,6 +12,7 @@ enum class ContactState : std::uint8_t { open, sliding, locked };
 struct ContactSprings {
   bool normal = false;
   double shear_stiffness = 0.0;  // N/m
+  bool operator==(const ContactSprings& other) const = default;
 };
 
 /// One vertex-edge contact and what it remembers across iterations and steps.

@@ -68,6 +68,8 @@ class ContactStage {
   double commit(std::span<const double> positions, double& friction_work);
   /// The contacts of the step being solved (after commit(): as committed).
   const std::vector<Contact>& contacts() const { return contacts_; }
+  /// The step's contacts set back to an earlier copy of contacts() (a solve taken back).
+  void restore_contacts(std::vector<Contact> contacts) { contacts_ = std::move(contacts); }
   /// Adds to `force` (2 per node) the forces of the closed contacts at `positions` after
   /// commit(): a locked contact's shear is its committed elastic slip, which add_spring_forces
   /// would count twice with the step's slip.

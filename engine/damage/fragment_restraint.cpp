@@ -219,4 +219,9 @@ void FragmentRestraint::anchor_new_springs(const FragmentRestraint& before,
   }
 }
 
+void FragmentRestraint::follow(std::span<const double> du) {
+  anchor_.resize(dofs_.size());
+  for (std::size_t i = 0; i < dofs_.size(); ++i) anchor_[i] = du[dofs_[i]];
+}
+
 }  // namespace rockdd

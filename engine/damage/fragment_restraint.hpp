@@ -46,6 +46,11 @@ class FragmentRestraint {
   /// added at, instead of from the step's start: they hold a part where the step has taken
   /// it. Springs `before` had keep its anchors.
   void anchor_new_springs(const FragmentRestraint& before, std::span<const double> du);
+  /// Every spring starts from the increment du: the parts are held where they are now, not
+  /// where the step started (Simulation::relax_restraint).
+  void follow(std::span<const double> du);
+  /// Every spring starts from the step's start again, as each step begins.
+  void restart() { anchor_.clear(); }
 
   std::size_t num_dofs() const { return dofs_.size(); }
   /// Same dofs, springs and anchors.

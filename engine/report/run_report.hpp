@@ -28,6 +28,7 @@ struct RunStats {
   long damage_limit_hits = 0;         // steps that ran out of damage passes
   long detached_elements = 0;         // elements that became blocks of their own
   long parts_cut_loose = 0;           // damage passes after which the fragment restraint grew
+  long restraint_relaxations = 0;     // solves that re-anchored the restraint (relax_restraint)
 };
 
 /// Where a quasi-static run went on with inertia (fracture.snap_back = "dynamic").

@@ -37,6 +37,7 @@ void write_counters(const RunStats& c, nlohmann::json& s) {
   s["damage_iteration_limit_hits"] = c.damage_limit_hits;
   s["detached_elements"] = c.detached_elements;
   s["parts_cut_loose"] = c.parts_cut_loose;
+  s["restraint_relaxations"] = c.restraint_relaxations;
 }
 
 /// summary.json's "timers": the step stages, the set-up, and with `setup` the whole process.
