@@ -231,7 +231,10 @@ RunResult Simulation::run(const RunOptions& options) {
       record_committed_state(detached);
       t += dt;
       counters.steps = step;
-      if (dt > 0.0) control.accept(!trial_.damage_changed && !onset_damage_next);
+      // A quiet step (nothing damaged, no contact switched, no onset ahead) counts towards
+      // growth; the next located onset takes dt back to the scene's.
+      if (dt > 0.0)
+        control.accept(!trial_.damage_changed && !trial_.contact_changed && !onset_damage_next);
       const StepReport report{step, t, dt, end_time, planned};
       if (!fracture_failure && options.keep_going && !options.keep_going(report, model_))
         report_.stopped_by_caller = true;
@@ -507,6 +510,7 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
       }
     }
     if (changes == 0) break;
+    trial_.contact_changed = true;
     // Factor reuse: the springs that switched are a low-rank change of K. When updating the
     // factor is expected to cost less than refactorizing (docs/benchmarks.md), the
     // next iteration solves with the updated factor; a downdate that fails falls back.

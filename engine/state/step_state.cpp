@@ -18,7 +18,8 @@ void StepState::begin_attempt(double at_time, double at_load_factor) {
   first_damage.reset();
   events.clear();
   damage_passes = 0;
-  restraint_grown = end_out_of_balance = calls_for_inertia = damage_changed = onset_located = false;
+  restraint_grown = end_out_of_balance = calls_for_inertia = damage_changed = onset_located =
+      contact_changed = false;
   onset_fraction = 1.0;
 }
 

@@ -45,6 +45,7 @@ struct StepState {
   bool end_out_of_balance = false;  // its last pass dropped moduli and was not re-solved
   bool calls_for_inertia = false;   // its cascade is to go on with inertia (snap_back)
   bool damage_changed = false;      // a damage pass raised some element's damage
+  bool contact_changed = false;     // an open-close iteration switched a contact's state
   bool onset_located = false;       // it ends at an undamaged element's onset, whose damage
                                     // runs in the next step, of no length
   double onset_fraction = 1.0;      // when cut: the fraction of it where the first onset lies
