@@ -231,10 +231,13 @@ RunResult Simulation::run(const RunOptions& options) {
       record_committed_state(detached);
       t += dt;
       counters.steps = step;
-      // A quiet step (nothing damaged, no contact switched, no onset ahead) counts towards
-      // growth; the next located onset takes dt back to the scene's.
-      if (dt > 0.0)
-        control.accept(!trial_.damage_changed && !trial_.contact_changed && !onset_damage_next);
+      // A step that damaged nothing and ends at no onset lets a shortened dt grow back to the
+      // scene's; a quiet one (no contact switched either) lets dt grow past it, up to dt_max.
+      // The next located onset takes dt back to the scene's.
+      if (dt > 0.0) {
+        const bool easy = !trial_.damage_changed && !onset_damage_next;
+        control.accept(easy, easy && !trial_.contact_changed);
+      }
       const StepReport report{step, t, dt, end_time, planned};
       if (!fracture_failure && options.keep_going && !options.keep_going(report, model_))
         report_.stopped_by_caller = true;

@@ -25,10 +25,11 @@ void StepControl::reject(long step, const std::string& why) {
   }
 }
 
-void StepControl::accept(bool easy) {
+void StepControl::accept(bool easy, bool quiet) {
   easy_in_a_row_ = easy ? easy_in_a_row_ + 1 : 0;
-  if (easy_in_a_row_ >= 10 && dt_ < dt_max_) {
-    dt_ = std::min(dt_ * 1.5, dt_max_);
+  const double largest = quiet ? dt_max_ : std::min(dt_max_, dt_first_);
+  if (easy_in_a_row_ >= 10 && dt_ < largest) {
+    dt_ = std::min(dt_ * 1.5, largest);
     ++changes_;
     easy_in_a_row_ = 0;
   }

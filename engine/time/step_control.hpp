@@ -20,8 +20,9 @@ class StepControl {
   double step_to(double remaining) const { return remaining - dt_ < dt_min_ ? remaining : dt_; }
   /// Halves dt after a failed attempt; throws RunFailure (with `why`) when dt < dt_min.
   void reject(long step, const std::string& why);
-  /// Records a committed step; grows dt after 10 easy steps in a row.
-  void accept(bool easy);
+  /// Records a committed step; grows dt by 1.5x after 10 easy steps in a row: up to dt_max
+  /// when the last step was also `quiet`, otherwise back up to the first dt at most.
+  void accept(bool easy, bool quiet);
   /// After a located onset: dt no larger than the scene's first dt, and growth starts over.
   void restart_growth();
   /// Goes on at `dt` (also the new largest; the smallest 1e-6 of it): a run that changes its
