@@ -40,6 +40,16 @@ BoundaryConditions bottom_fixed() {
 }
 
 /// The spring stiffness on each dof (0 where there is none), read back through forces().
+/// No dof prescribed: every node of the strip free, its equations in dof order.
+BoundaryConditions nothing_prescribed() {
+  BoundaryConditions bc;
+  bc.prescribed.assign(12, 0);
+  bc.velocity.assign(12, 0.0);
+  bc.equation.resize(12);
+  for (std::size_t d = 0; d < 12; ++d) bc.equation[d] = bc.num_equations++;
+  return bc;
+}
+
 std::vector<double> springs(const FragmentRestraint& restraint) {
   std::vector<double> unit(12, 1.0), force(12, 0.0);
   restraint.forces(unit, force);
@@ -70,11 +80,7 @@ TEST(FragmentRestraint, ALooseDetachedBlockGetsTheWeakSpringOnEveryNode) {
   // Nothing prescribed: the strip is a block loose in all three modes, detached in an earlier
   // step, so every node gets fraction x E0 t / 3 per element corner on both dofs.
   Model m = strip({3e9, 3e9, 3e9, 3e9});
-  BoundaryConditions bc;
-  bc.prescribed.assign(12, 0);
-  bc.velocity.assign(12, 0.0);
-  bc.equation.resize(12);
-  for (std::size_t d = 0; d < 12; ++d) bc.equation[d] = bc.num_equations++;
+  const BoundaryConditions bc = nothing_prescribed();
   const FragmentRestraint restraint(m, bc, 1e-6);
   EXPECT_EQ(restraint.num_dofs(), 12u);
   const std::vector<double> k = springs(restraint);
@@ -106,11 +112,7 @@ TEST(FragmentRestraint, FollowingHoldsThePartsWhereTheyAreAndRestartHoldsFromThe
   // and no energy at that increment, k (du' - du) past it; the commit then restarts them from
   // the step's start (force k du'). Exact: the springs are linear.
   Model m = strip({3e9, 3e9, 3e9, 3e9});
-  BoundaryConditions bc;
-  bc.prescribed.assign(12, 0);
-  bc.velocity.assign(12, 0.0);
-  bc.equation.resize(12);
-  for (std::size_t d = 0; d < 12; ++d) bc.equation[d] = bc.num_equations++;
+  const BoundaryConditions bc = nothing_prescribed();
   FragmentRestraint restraint(m, bc, 1e-6);
   const FragmentRestraint fresh = restraint;
   const std::vector<double> k = springs(fresh);  // from unit increments, anchors at 0

@@ -688,6 +688,28 @@ InputError meshing_error(const std::function<Mesh()>& make, const MeshingLimits&
   return InputError("", "", "");
 }
 
+TEST(MeshingProcess, ACrashIsTheChildsEvenWhereTheAskerHandlesItsSignal) {
+  // Found by fuzzing (fuzz_geo): Gmsh 4.8's .geo parser divides by zero on a malformed script,
+  // and the fuzzer's own SIGFPE handler, inherited by the meshing process, reported that as a
+  // crash of the fuzzer. The meshing process takes the default action for crash signals: a
+  // handler the asker installed (here one that would end the child quietly with status 0,
+  // leaving no reply) does not run there, and the asker hears "killed by signal 8".
+  struct sigaction quiet {
+  }, before{};
+  quiet.sa_handler = [](int) { ::_exit(0); };
+  sigemptyset(&quiet.sa_mask);
+  ASSERT_EQ(::sigaction(SIGFPE, &quiet, &before), 0);
+  const InputError crash = meshing_error(
+      []() -> Mesh {
+        std::raise(SIGFPE);
+        return {};
+      },
+      MeshingLimits{2.0, 0.0});
+  ::sigaction(SIGFPE, &before, nullptr);
+  EXPECT_NE(crash.expected().find("got Gmsh killed by signal 8"), std::string::npos)
+      << crash.what();
+}
+
 TEST(MeshingProcess, ACrashAHangOrABlowUpEndsAsAnInputErrorOfTheAsker) {
   const MeshingLimits limits{2.0, 0.0};
   const InputError crash = meshing_error(
