@@ -291,8 +291,10 @@ void Simulation::begin_attempt(double time, double load_factor) {
     model_.damage = committed_.damage;
     system_->invalidate();  // the moduli changed back
   }
-  if (!fragments_.same_springs(committed_.restraint)) system_->invalidate();
-  fragments_ = committed_.restraint;  // anchors too
+  if (fragments_ != committed_.restraint) {  // springs or anchors
+    if (!fragments_.same_springs(committed_.restraint)) system_->invalidate();
+    fragments_ = committed_.restraint;
+  }
   system_->drop_folded_changes();
 }
 

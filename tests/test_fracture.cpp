@@ -101,15 +101,14 @@ TEST(Damage, DissipatesWhatTheSecantLawCannotReturn) {
   //   that integrates the work: across the onset's force drop 1/2 (E0 eps_1 - lambda ft0)
   //   4.7e-6 V, plus the elastic rise before each step's damage update on the plateau (6 % of
   //   that): within 1.1 x the first.
-  // The steps are not cut at the onset (fracture.locate_onsets = false) and do not grow
-  // before it (time.dt_max = dt): the sums above are over whole steps of dt, and a step cut
-  // at the onset lets round-off pick one element.
+  // The steps are not cut at the onset (fracture.locate_onsets = false): the sums above are
+  // over whole steps, and a step cut at the onset lets round-off pick one element.
   const double young = 20e9, ft0 = 2e6, eps_t0 = ft0 / young, lambda = 0.1, rate = 4.7e-6;
   const int steps = 40;
   const auto run = test::run_scene_text(
       bar_in_tension("detach_at_damage = 0.99\n"),
       {"boundary.2.velocity_x=4.7e-7", "time.end=" + std::to_string(steps) + ".0",
-       "fracture.locate_onsets=false", "time.dt_max=1.0"});
+       "fracture.locate_onsets=false"});
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   EXPECT_EQ(run.result.summary["detached_elements"].get<long>(), 0);
   const double volume = 0.1 * 0.05;

@@ -32,12 +32,6 @@ inline constexpr std::int64_t kDefaultMaxSteps = 10'000'000;
 /// check").
 inline constexpr double kDefaultEnergyTolerance = 1e-3;
 
-/// time.dt_max's default in a quasi-static analysis, as a multiple of dt: a step in which
-/// nothing damages and no contact changes may grow to it (chosen by measurement,
-/// docs/method-choices.md, "Quiet steps grow"). Other analyses keep dt: there dt sets the
-/// accuracy of the motion.
-inline constexpr double kQuasiStaticGrowth = 16.0;
-
 /// [time]: first dt, end time or step count, and step control.
 struct TimeSpec {
   double dt = 1.0;                              // s (1 in a static scene without [time])
@@ -46,7 +40,7 @@ struct TimeSpec {
   std::int64_t max_steps = kDefaultMaxSteps;    // the step budget (step_budget.hpp)
   double dt_min = 0.0;                          // s; 0 = dt * 1e-6 (default chosen)
   std::optional<double> max_step_displacement;  // m
-  double dt_max = 0.0;                          // s; default dt (quasi-static: 16 dt)
+  double dt_max = 0.0;                          // s; default = dt
   // The energy one step may create, as a share of the run's energy scale (EnergyCheck).
   double energy_tolerance = kDefaultEnergyTolerance;
   Integrator integrator = Integrator::dda;

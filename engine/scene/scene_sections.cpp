@@ -294,9 +294,7 @@ TimeSpec read_time(TableReader& root, Analysis analysis) {
   }
   check_step_budget(table, time);
   time.max_step_displacement = table.number("max_step_displacement", above(0));
-  time.dt_max = table.number_or(
-      "dt_max", analysis == Analysis::quasi_static ? kQuasiStaticGrowth * time.dt : time.dt,
-      above(0));
+  time.dt_max = table.number_or("dt_max", time.dt, above(0));
   if (time.dt_max < time.dt) {
     table.fail("dt_max",
                "expected a number >= time.dt = " + dt + ", got " + describe(*table.find("dt_max")));
