@@ -53,8 +53,16 @@ void Simulation::commit_step(double dt) {
     // springs' anchors: after it they would count that slip twice.
     std::fill(trial_.f_contact.begin(), trial_.f_contact.end(), 0.0);
     contact_->add_spring_forces(trial_.positions, trial_.f_contact);
+    const double spring_energy_before = committed_.contact_spring_energy;
+    const double friction_before = energy.friction;
     committed_.contact_spring_energy = contact_->commit(trial_.positions, energy.friction);
     committed_.contacts = contact_->contacts();
+    if (analysis_ == Analysis::dynamic && integrator_ == Integrator::dda)
+      energy.integrator += contact_end_point_loss(
+          trial_.f_contact, committed_.contact_force, trial_.du, bc_.prescribed,
+          committed_.contact_spring_energy - spring_energy_before,
+          energy.friction - friction_before);
+    committed_.contact_force = trial_.f_contact;
   }
   fragments_.forces(trial_.du, trial_.restraint_force);
   // The restraint's springs restart from zero force next step: the energy they hold now

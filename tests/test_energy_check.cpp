@@ -128,15 +128,16 @@ TEST(QuasiStaticLoss, TheLoadHeldDiskClosesItsBalance) {
 
 TEST(EnergyCheck, FrictionalInclineAtTenMillisecondsCreatesLessThanOnePercentAStep) {
   // data/verification/frictional_incline.toml (dynamic, DDA, dt = 10 ms): the block slides
-  // s = 1/2 g (sin 30 - tan 15 cos 30) t^2 = 1.340 m in 1 s. Without the check its release
-  // created 2.2 % of the work in one step; with it (time.energy_tolerance = 1e-3) no step
-  // creates more than 0.1 % of the work done by its end, a few steps are redone shorter, and
-  // the slide is within 1 % of the closed form (measured +0.49 %).
-  const auto run = test::run_data_scene("verification/frictional_incline.toml", {"output.every=0"});
+  // s = 1/2 g (sin 30 - tan 15 cos 30) t^2 = 1.340 m in 1 s. Its release once created 2.2 % of
+  // the work in one step; booked as DDA's scheme moves it (its end forces' work, exactly:
+  // contact_end_point_loss) no step creates more than 0.1 % of the work done by its end even
+  // with the check off (time.energy_tolerance = 1; measured 0.043 %, none redone), and the
+  // slide is within 1 % of the closed form (measured +0.54 %).
+  const auto run = test::run_data_scene("verification/frictional_incline.toml",
+                                        {"output.every=0", "time.energy_tolerance=1"});
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   const auto& check = run.result.summary["energy_check"];
   EXPECT_LE(check["largest_step_created_share"].get<double>(), 1e-3 * (1 + 1e-9));
-  EXPECT_GT(run.result.summary["redone_by"]["energy"].get<long>(), 0);
   EXPECT_EQ(check["unresolved_steps"].get<long>(), 0);
   // Every row: what the balance's remainder fell by since the row before is at most 1 % of the
   // work done by then.
@@ -154,13 +155,14 @@ TEST(EnergyCheck, FrictionalInclineAtTenMillisecondsCreatesLessThanOnePercentASt
 }
 
 TEST(EnergyCheck, RunWhoseStepCannotBeCutFarEnoughFailsNamingTheStepAndTheEnergy) {
-  // The incline at dt = 20 ms with dt_min = 10 ms: its release must be cut below 10 ms to
-  // create less than 0.1 % of the work, so the run fails (exit 1) and says which step and how
-  // much energy, never an `ok` over a created joule.
+  // The incline under Newmark's average acceleration (whose trapezoid makes a penalty spring
+  // that opens within a step give back more than it held) with dt_min = dt = 10 ms: its first
+  // step creates 1.4 % of the work (measured) and may not be cut, so the run fails (exit 1)
+  // and says which step and how much energy, never an `ok` over a created joule.
   test::TempDir dir;
   const auto r = test::rockdd_cli(
       "run " + test::data_file("verification/frictional_incline.toml").string() +
-          " --set time.dt=0.02 --set time.dt_min=0.01 --set output.every=0 --out out",
+          " --set time.integrator=newmark --set time.dt_min=0.01 --set output.every=0 --out out",
       dir.path());
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("step "), std::string::npos) << r.output;

@@ -7,11 +7,12 @@
 namespace rockdd {
 
 void CommittedState::resize(std::size_t num_dofs) {
-  for (auto* field : {&f_ext, &reaction, &acceleration, &residual}) field->assign(num_dofs, 0.0);
+  for (auto* field : {&f_ext, &reaction, &acceleration, &residual, &contact_force})
+    field->assign(num_dofs, 0.0);
 }
 
 void CommittedState::follow_split_nodes(std::span<const std::int32_t> node_origin) {
-  for (auto* field : {&f_ext, &reaction, &acceleration, &residual})
+  for (auto* field : {&f_ext, &reaction, &acceleration, &residual, &contact_force})
     rockdd::follow_split_nodes(node_origin, *field);
 }
 

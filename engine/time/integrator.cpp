@@ -1,5 +1,6 @@
 #include "engine/time/integrator.hpp"
 
+#include <algorithm>
 #include <cstdint>
 
 namespace rockdd {
@@ -65,6 +66,23 @@ double mass_term_energy(double mass_coefficient, std::span<const double> du,
   for (std::size_t d = 0; d < du.size(); ++d)
     if (!prescribed[d]) energy += node_mass[d / 2] * du[d] * du[d];
   return 0.5 * mass_coefficient * energy;
+}
+
+double contact_end_point_loss(std::span<const double> f_contact_end,
+                              std::span<const double> f_contact_start, std::span<const double> du,
+                              std::span<const std::uint8_t> prescribed, double spring_energy_gain,
+                              double friction) {
+  double taken = 0.0, booked = 0.0;  // serially in dof order: totals must not depend on threads
+  for (std::size_t d = 0; d < du.size(); ++d) {
+    if (prescribed[d]) {
+      taken += 0.5 * (f_contact_start[d] + f_contact_end[d]) * du[d];
+    } else {
+      taken += f_contact_end[d] * du[d];
+      booked += 0.5 * (f_contact_end[d] - f_contact_start[d]) * du[d];
+    }
+  }
+  const double loss = taken - spring_energy_gain - friction;
+  return std::max(loss, 0.0) - booked;
 }
 
 }  // namespace rockdd

@@ -33,6 +33,21 @@ double update_velocity(Analysis analysis, Integrator integrator, double dt,
                        std::span<const double> imposed_velocity, std::span<const double> node_mass,
                        std::span<double> v, std::span<double> a);
 
+/// What DDA's scheme loses through contact forces beyond the share update_velocity books.
+/// DDA's velocity update makes the kinetic energy change the work of the step's end forces,
+/// exactly, so the contacts take f_c,end . du from the body (the trapezoid on prescribed dofs,
+/// whose work the reactions book): at a landing, springs that close within the step carry
+/// their end force over all of it, and that is the impact's loss. update_velocity's trapezoid
+/// books (f_c,end - f_c,start) . du / 2 of it on the free dofs. Returns the difference, where
+/// the contacts' loss (what they took less their springs' energy gain and the friction booked)
+/// is positive; where it is negative the contacts made energy, and none of that is booked as
+/// a loss: the balance's unaccounted shows it. `f_contact_*` are the springs' forces as
+/// internal forces (what the body pushes them with).
+double contact_end_point_loss(std::span<const double> f_contact_end,
+                              std::span<const double> f_contact_start, std::span<const double> du,
+                              std::span<const std::uint8_t> prescribed, double spring_energy_gain,
+                              double friction);
+
 /// The energy a step's mass term c M holds at increment du: (c/2) sum m du^2 over the free
 /// dofs. Without inertia it is the work the step's loads did beyond what the body stores,
 /// which the next step, starting at rest, discards.
