@@ -57,12 +57,13 @@ void Simulation::commit_step(double dt) {
     const double friction_before = energy.friction;
     committed_.contact_spring_energy = contact_->commit(trial_.positions, energy.friction);
     committed_.contacts = contact_->contacts();
-    if (analysis_ == Analysis::dynamic && integrator_ == Integrator::dda)
+    if (analysis_ == Analysis::dynamic && integrator_ == Integrator::dda) {
       energy.integrator += contact_end_point_loss(
-          trial_.f_contact, committed_.contact_force, trial_.du, bc_.prescribed,
+          trial_.contact_force_solved, committed_.contact_force, trial_.du, bc_.prescribed,
           committed_.contact_spring_energy - spring_energy_before,
           energy.friction - friction_before);
-    committed_.contact_force = trial_.f_contact;
+      committed_.contact_force = trial_.contact_force_solved;
+    }
   }
   fragments_.forces(trial_.du, trial_.restraint_force);
   // The restraint's springs restart from zero force next step: the energy they hold now

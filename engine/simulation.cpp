@@ -508,6 +508,12 @@ bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms
       // times: contacts that keep swinging between two answers settle on their last one.
       const bool settle =
           retries >= kRetriesBeforeSettling && iterations > limit - kSettlingIterations;
+      // The forces this solve's contacts pushed with, before the update switches any: with
+      // DDA's inertia they are what the step's kinetic energy went into (commit_step).
+      if (analysis_ == Analysis::dynamic && integrator_ == Integrator::dda) {
+        std::fill(trial_.contact_force_solved.begin(), trial_.contact_force_solved.end(), 0.0);
+        contact_->add_spring_forces(trial_.positions, trial_.contact_force_solved);
+      }
       changes = contact_->update_states(trial_.positions, scale, settle, penetration);
       if (changes == 0 && scale > 1.0) {
         ++counters.open_close_relaxed_steps;

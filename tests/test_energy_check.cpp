@@ -155,14 +155,15 @@ TEST(EnergyCheck, FrictionalInclineAtTenMillisecondsCreatesLessThanOnePercentASt
 }
 
 TEST(EnergyCheck, RunWhoseStepCannotBeCutFarEnoughFailsNamingTheStepAndTheEnergy) {
-  // The incline under Newmark's average acceleration (whose trapezoid makes a penalty spring
-  // that opens within a step give back more than it held) with dt_min = dt = 10 ms: its first
-  // step creates 1.4 % of the work (measured) and may not be cut, so the run fails (exit 1)
-  // and says which step and how much energy, never an `ok` over a created joule.
+  // The toppling block under Newmark's average acceleration (whose trapezoid makes a penalty
+  // spring that swings within a step give back more than it held) with dt_min = dt = 1 ms:
+  // its fifth step, standing on its corner, creates 0.35 % of the work (measured) and may not
+  // be cut, so the run fails (exit 1) and says which step and how much energy, never an `ok`
+  // over a created joule.
   test::TempDir dir;
   const auto r = test::rockdd_cli(
-      "run " + test::data_file("verification/frictional_incline.toml").string() +
-          " --set time.integrator=newmark --set time.dt_min=0.01 --set output.every=0 --out out",
+      "run " + test::data_file("toppling_block.toml").string() +
+          " --set time.integrator=newmark --set time.dt_min=1e-3 --set output.every=0 --out out",
       dir.path());
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_NE(r.output.find("step "), std::string::npos) << r.output;
@@ -184,17 +185,23 @@ TEST(TopplingBlock, TallTopplesLandsOnItsSideAndIsNotThrownBack) {
   // data/toppling_block.toml: b / h = 0.25 < tan 20 deg = 0.364, so the block turns about its
   // downhill corner and lands on its long side, a quarter turn (rotation -pi/2 to 0.01 rad),
   // and the joint's friction (40 deg) holds it there. The landing is the step of the most
-  // kinetic energy; after it the block must not be thrown (the engine of 26 November threw it
-  // back up the slope with 2,565 J from 8.9 J): its mean displacement down the slope never
-  // falls back by more than 1 mm from where it landed, and once at rest stays there. The balance of
-  // the impact is open (issue 30, docs/method-choices.md "Energy check"): a step creates up to 1.8
-  // % of the work however short (the check's unresolved steps) and 3 % stays unaccounted; held here
-  // to 2.5 % a step, so that it does not grow unseen.
+  // kinetic energy (15.6 kJ); after it the block must not be thrown (the engine of 26 November
+  // threw it back up the slope with 2,565 J from 8.9 J):
+  //  - no step creates more than time.energy_tolerance = 0.1 % of the work (measured 0.00 %;
+  //    it was 1.8 % in a step however short, before DDA's contact work was booked as its
+  //    scheme moves it and a contact that slid back past its anchor stuck there);
+  //  - the elastic rebound of its far end rocks it back about its downhill corner by at most
+  //    0.1 rad (measured 0.057 rad; 0.054 and 0.023 rad at dt / 2 and dt / 4), which moves its
+  //    centre up the slope by at most 2 cm (measured 1.1 cm), and no later kinetic energy
+  //    reaches a tenth of the landing's (measured 771 J);
+  //  - it comes to rest downhill of where it landed (measured 12.8 mm), its centre still to
+  //    0.1 mm over the last 0.2 s.
   const auto run = test::run_data_scene("toppling_block.toml", {"output.every=0"});
   ASSERT_TRUE(run.result.ok) << run.result.reason;
   const auto& h = run.history;
   const auto& rotation = h.at("block.rotation");
   const auto& kinetic = h.at("energy.kinetic");
+  const auto& time = h.at("time");
   EXPECT_NEAR(rotation.back(), -std::numbers::pi / 2, 0.01);
   const std::size_t landing =
       static_cast<std::size_t>(std::max_element(kinetic.begin(), kinetic.end()) - kinetic.begin());
@@ -206,10 +213,23 @@ TEST(TopplingBlock, TallTopplesLandsOnItsSideAndIsNotThrownBack) {
   auto downhill = [&](std::size_t i) {
     return h.at("block.ux")[i] * std::cos(slope) - h.at("block.uy")[i] * std::sin(slope);
   };
-  for (std::size_t i = landing; i < kinetic.size(); ++i)
-    EXPECT_GE(downhill(i), downhill(landing) - 1e-3) << "row " << i;
-  EXPECT_LT(kinetic.back(), 1e-6 * peak);  // at rest on its side
-  EXPECT_LE(run.result.summary["energy_check"]["largest_step_created_share"].get<double>(), 0.025);
+  // The first rows after the landing still carry its kinetic energy down: the bound is on
+  // what comes back after the impact's 10 ms.
+  for (std::size_t i = landing; i < kinetic.size(); ++i) {
+    EXPECT_GE(downhill(i), downhill(landing) - 0.02) << "row " << i;
+    EXPECT_LE(rotation[i], -std::numbers::pi / 2 + 0.1) << "row " << i;
+    if (time[i] > time[landing] + 0.01) {
+      EXPECT_LT(kinetic[i], 0.1 * peak) << "row " << i;
+    }
+  }
+  EXPECT_GT(downhill(kinetic.size() - 1), downhill(landing));
+  std::size_t settled = kinetic.size() - 1;
+  while (settled > 0 && time[settled] > time.back() - 0.2) --settled;
+  EXPECT_LT(std::abs(downhill(kinetic.size() - 1) - downhill(settled)), 1e-4);
+  EXPECT_LE(run.result.summary["energy_check"]["largest_step_created_share"].get<double>(),
+            1e-3 * (1 + 1e-9));
+  EXPECT_TRUE(run.result.summary["energy_check"]["balance_closes"].get<bool>())
+      << run.result.summary["energy_check"].dump();
 }
 
 TEST(TopplingBlock, SquatStands) {

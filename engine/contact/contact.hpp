@@ -27,7 +27,6 @@ struct Contact {
   double tensile_strength = 0.0;          // of the joint (Pa)
   double area = 0.0;       // joint area the contact stands for (m^2), for cohesion and tension
   bool bonded = false;     // an intact joint: cohesion and tensile strength count until it fails
-  bool open_at_start = false;  // open when the step started: it touches within the step
   std::uint8_t flips = 0;  // open <-> closed changes in this step attempt
   std::uint8_t shear_swings = 0;     // changes of the shear force beyond tolerance, this attempt
   double used_normal_force = 0.0;    // the normal force friction used in the last update

@@ -217,7 +217,6 @@ bool ContactStage::detect(std::span<const double> positions, std::span<const Con
       }
     }
     c.slide_stiffness = rules_.parameters.sliding_stiffness;
-    c.open_at_start = c.state == ContactState::open;
     c.anchor_start = c.shear_spring;
     linearise(c, positions);
     // The step starts from the force the contact ended the last step with. Between two steps
@@ -354,16 +353,7 @@ int ContactStage::update_states(std::span<const double> positions, double tolera
       continue;
     }
     const double slip = step_slip(c, positions);
-    // With inertia, a contact that touched within the step keeps the touch point an earlier
-    // iterate found while it lies on this solve's path (in slip, between the step's start and
-    // this end). Off it, it is no point the vertex passed: at a landing the first iterate, with
-    // no contact yet, slid the whole face 0.14 mm the other way, and every contact anchored
-    // there pushed the block along its slip at the friction limit (docs/method-choices.md,
-    // "Energy at a landing").
-    const bool touches_anew =
-        rules_.parameters.sliding_stiffness == 0.0 && c.open_at_start && !c.bonded &&
-        (-c.anchor_start < std::min(slip, 0.0) || -c.anchor_start > std::max(slip, 0.0));
-    if (!was_closed || touches_anew) {
+    if (!was_closed) {
       // It touched during the step, where its gap crossed zero (linear in between): that is
       // its anchor. Anchoring it at the end of the step would let it skip a step of sliding,
       // and a block whose contacts chatter would lose that much friction at every touch.
@@ -458,11 +448,12 @@ ContactStage::ShearUpdate ContactStage::update_shear_with_inertia(Contact& c, do
     out.implied = ks * elastic;
   } else if (capacity > 0.0 && before == ContactState::sliding && elastic * c.slip_sign < 0.0) {
     // It slid back past its anchor under the friction load: friction was more than enough
-    // to hold it, so it sticks here, its spring set to carry the friction the solve had:
-    // the forces balance at these positions in either state.
+    // to hold it, so it sticks at its anchor, and the next solve's spring finds the force
+    // that holds it there. Locked where the friction load had pushed it, with that load kept
+    // in its spring, it pushed the vertex on along the step's slip (docs/method-choices.md,
+    // "Energy at a landing").
     c.state = ContactState::locked;
-    c.shear_spring = c.slip_sign * capacity / ks - slip;
-    out.implied = c.slip_sign * capacity;
+    out.implied = ks * elastic;
   } else {
     c.state = ContactState::sliding;
     c.slip_sign = elastic > 0.0 ? 1.0 : elastic < 0.0 ? -1.0 : 0.0;

@@ -41,8 +41,9 @@ double update_velocity(Analysis analysis, Integrator integrator, double dt,
 /// books (f_c,end - f_c,start) . du / 2 of it on the free dofs. Returns the difference, where
 /// the contacts' loss (what they took less their springs' energy gain and the friction booked)
 /// is positive; where it is negative the contacts made energy, and none of that is booked as
-/// a loss: the balance's unaccounted shows it. `f_contact_*` are the springs' forces as
-/// internal forces (what the body pushes them with).
+/// a loss: the balance's unaccounted shows it. `f_contact_end` is what the step's last solve
+/// had its contacts push with (before its last update switched any), `f_contact_start` the
+/// last step's; both as internal forces (what the body pushes the springs with).
 double contact_end_point_loss(std::span<const double> f_contact_end,
                               std::span<const double> f_contact_start, std::span<const double> du,
                               std::span<const std::uint8_t> prescribed, double spring_energy_gain,
