@@ -18,10 +18,10 @@
 namespace rockdd {
 
 namespace {
-// The restraint relaxes when its springs hold more than this share of the stored energy (a
-// tenth of what the energy balance may leave open), down to kRestraintRelaxed of it.
-constexpr double kRestraintRelaxationTrigger = 1e-3;
-constexpr double kRestraintRelaxed = 1e-6;
+// The restraint relaxes when its springs hold more than fracture.restraint_relaxation of the
+// stored energy (by default a tenth of what the energy balance may leave open), down to
+// kRestraintRelaxed of that share.
+constexpr double kRestraintRelaxed = 1e-3;
 // Relaxations go on while each leaves the springs less than this share of what they held.
 constexpr double kRelaxationFall = 0.5;
 constexpr int kMaxRestraintRelaxations = 30;
@@ -182,8 +182,9 @@ void Simulation::relax_restraint(long step, int retries, const InertiaTerms& ine
   double held = fragments_.energy(trial_.du);
   if (held <= 0.0) return;
   const double stored = stored_energy();
-  if (held <= kRestraintRelaxationTrigger * stored) return;
-  const double floor = kRestraintRelaxed * stored;
+  const double trigger = scene_.fracture.restraint_relaxation;
+  if (trigger == 0.0 || held <= trigger * stored) return;
+  const double floor = kRestraintRelaxed * trigger * stored;
   const double reach = contact_ && !scene_.time.max_step_displacement
                            ? contact_->parameters().reach
                            : std::numeric_limits<double>::infinity();

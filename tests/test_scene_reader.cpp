@@ -164,6 +164,7 @@ TEST(SceneReader, ReadsEveryFieldOfTheExample) {
   EXPECT_DOUBLE_EQ(s.fracture.growth_tolerance, 1e-3);
   EXPECT_DOUBLE_EQ(s.fracture.fragment_stiffness, 1e-6);
   EXPECT_DOUBLE_EQ(s.fracture.loose_part_support, 1.0);
+  EXPECT_DOUBLE_EQ(s.fracture.restraint_relaxation, 1e-3);
   EXPECT_EQ(s.fracture.snap_back, FractureSpec::SnapBack::held);
   EXPECT_FALSE(s.fracture.snap_back_dt.has_value());
 
@@ -207,6 +208,7 @@ TEST(SceneReader, StaticSceneWithoutTimeRunsOneStepAndRecordsEveryDefault) {
       {"fracture.growth_tolerance", "0.001"},
       {"fracture.fragment_stiffness", "1e-06"},
       {"fracture.loose_part_support", "1"},
+      {"fracture.restraint_relaxation", "0.001"},
       {"fracture.snap_back", "held"},
       {"output.dir", "out"},
       {"output.every", "100"},

@@ -153,6 +153,10 @@ struct FractureSpec {
                                      // in steps without inertia
   double loose_part_support = 1.0;   // x E0 t: the springs of the statically determinate support
                                      // of a part that a damage cascade cuts loose inside a step
+  // After a settling solve or a damage pass, the fragment restraint is re-anchored where the
+  // parts settled while its springs hold more than this share of the stored energy (down to a
+  // thousandth of it); 0: never.
+  double restraint_relaxation = 1e-3;
   /// How a quasi-static run follows a damage cascade: re-solved at held boundaries, or, from
   /// the first cascade on, with inertia (Newmark) at snap_back_dt.
   enum class SnapBack { held, dynamic };

@@ -377,7 +377,8 @@ FractureSpec read_fracture(TableReader& root, bool has_damage, Analysis analysis
   if (!has_damage && !root.has("fracture")) return {};
   TableReader table = optional_table(root, "fracture");
   table.allow_only({"damage_band", "max_damage_passes", "fragment_stiffness", "loose_part_support",
-                    "snap_back", "snap_back_dt", "locate_onsets", "growth_tolerance"});
+                    "restraint_relaxation", "snap_back", "snap_back_dt", "locate_onsets",
+                    "growth_tolerance"});
   FractureSpec fracture;
   fracture.damage_band = table.number_or("damage_band", fracture.damage_band, above(0));
   if (auto passes = table.integer("max_damage_passes", 1, 1000000)) {
@@ -389,6 +390,8 @@ FractureSpec read_fracture(TableReader& root, bool has_damage, Analysis analysis
                                                 between(0, false, 1, true));
   fracture.loose_part_support = table.number_or("loose_part_support", fracture.loose_part_support,
                                                 between(0, false, 1e6, true));
+  fracture.restraint_relaxation = table.number_or(
+      "restraint_relaxation", fracture.restraint_relaxation, between(0, true, 1, true));
   if (table.choice_or("snap_back", {"held", "dynamic"}, "held") == "dynamic") {
     // A static analysis has no time to follow motion in; a dynamic one has inertia already.
     if (analysis != Analysis::quasi_static)
