@@ -379,7 +379,7 @@ TEST(BrazilianDisk, DynamicSplitClosesItsEnergyBalance) {
   // (its term is round-off); DDA's scheme damps m (a_n - a_{n+1}) du / 2 a step, which the
   // balance books (summary energy.integrator_dissipation). Measured (Newmark, DDA): peak
   // 174.4, 175.2 kN (P / (pi R t) 2.22, 2.23 MPa: Huang's 2.118 plus the platen's rate), gap
-  // 0.49, 0.49 %; halves opening at 0.41, 0.60 m/s; DDA damped 8.0 % of the work. Re-solves
+  // 0.49, 0.52 %; halves opening at 0.41, 0.60 m/s; DDA damped 8.0 % of the work. Re-solves
   // with inertia are not measured as snap-back (the energy they free is kinetic),
   // so summary energy.created_by_resolves is 0 by construction and not checked. Before the overlaps
   // that a detachment exposes were forgiven with inertia too, a copy of a split node found 1.6 um
