@@ -22,13 +22,13 @@
 
 namespace rockdd {
 
-void Simulation::commit_step(double dt) {
+void Simulation::commit_step(double dt, const StepControl& control) {
   const std::size_t num_dofs = model_.X.size();
   EnergyAccount& energy = committed_.energy;
   // A quasi-static step's velocity is the one its inertia term implies (inertia_step): a step
   // cut short at an onset, or one of no length, moves no faster for it.
   energy.integrator +=
-      update_velocity(analysis_, integrator_, inertia_step(dt), trial_.du, bc_.prescribed,
+      update_velocity(analysis_, integrator_, inertia_step(dt, control), trial_.du, bc_.prescribed,
                       bc_.velocity, model_.node_mass, model_.v, committed_.acceleration);
   if (corotational_) {
     // Only blocks that nothing holds turn exactly; the others stay where the solve balanced

@@ -298,8 +298,8 @@ void Simulation::begin_attempt(double time, double load_factor) {
   system_->drop_folded_changes();
 }
 
-double Simulation::inertia_step(double dt) const {
-  return analysis_ == Analysis::quasi_static ? scene_.time.dt : dt;
+double Simulation::inertia_step(double dt, const StepControl& control) const {
+  return analysis_ == Analysis::quasi_static ? std::min(scene_.time.dt, control.dt()) : dt;
 }
 
 Simulation::Attempt Simulation::attempt_step(long step, int retries, double time, double dt,
@@ -325,7 +325,7 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
     update_element_rotations(model_, model_.u);
     system_->invalidate();
   }
-  const InertiaTerms inertia = inertia_terms(analysis_, integrator_, inertia_step(dt));
+  const InertiaTerms inertia = inertia_terms(analysis_, integrator_, inertia_step(dt, control));
   prepare_system(inertia.mass_coefficient);
 
   for (std::size_t d = 0; d < num_dofs; ++d) {
@@ -460,7 +460,7 @@ bool Simulation::commit_checked_step(long step, double dt, const EnergyBalance& 
     rollback_.v = model_.v;
     rollback_.contacts_committed_before = contact_ && contact_->committed_before();
   }
-  commit_step(dt);
+  commit_step(dt, control);
   const EnergyBalance after = energy();
   const double created = EnergyCheck::created(before, after, trial_.energy.created);
   std::string why;

@@ -115,11 +115,12 @@ class Simulation {
   /// settles the last step's damage growth and runs the onsets that settling passes.
   Attempt attempt_step(long step, int retries, double time, double dt, double load_factor,
                        StepControl& control, bool may_cut, bool onset_at_start);
-  /// The step length whose inertia the system carries: dt, but the scene's dt in a
-  /// quasi-static analysis, whose mass term only regularises (the velocity resets each step):
-  /// cutting a step at an onset, or running an onset's damage in a step of no length, does not
-  /// stiffen it.
-  double inertia_step(double dt) const;
+  /// The step length whose inertia the system carries: dt, but in a quasi-static analysis,
+  /// whose mass term only regularises (the velocity resets each step), the step control's dt
+  /// up to the scene's: cutting a step at an onset, or running an onset's damage in a step of
+  /// no length, does not stiffen it, while a step redone shorter (its open-close iteration did
+  /// not settle) is held back more, as DDA's own step cuts hold loose blocks.
+  double inertia_step(double dt, const StepControl& control) const;
   /// The model's working fields, the restraint and the trial state as the attempt starts:
   /// the committed state's, whatever an earlier attempt left.
   void begin_attempt(double time, double load_factor);
@@ -188,7 +189,7 @@ class Simulation {
 
   // The commit and what follows it (commit.cpp).
   /// Velocity, rotations of free blocks, u, stresses, contacts, reactions and work.
-  void commit_step(double dt);
+  void commit_step(double dt, const StepControl& control);
   /// The committed state taken from the model, the trial and the restraint after the step and
   /// its fracture (`detached`: elements detached and everything on the nodes was rebuilt).
   void record_committed_state(bool detached);

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <vector>
 
 #include "support/data_file.hpp"
 #include "support/file_text.hpp"
@@ -238,6 +239,42 @@ TEST(UniaxialCompression, PeakDoesNotMoveWithTheLoadStepOnSeedsOneToThree) {
     EXPECT_NEAR(peaks[1], peaks[0], 0.01 * peaks[0]) << "dt x 2";
     EXPECT_NEAR(peaks[2], peaks[0], 0.01 * peaks[0]) << "dt / 2";
   }
+}
+
+TEST(UniaxialCompression, RunPastFailureKeepsItsStep) {
+  // Issue 30: the paper's specimen (seed 1) without its softening stop, to t = 4.2 s, three
+  // times the peak's travel (peak 553,990 N at t = 1.389 s). After the peak the fragments'
+  // contacts must settle: a step whose open-close iteration does not settle is redone shorter,
+  // and its mass term (the quasi-static regulariser) follows the shorter step. With the
+  // scene's dt in it whatever the cut, every halving posed the same problem, and the run
+  // failed at step 1,450 with dt below dt_min. Measured: 2,287 steps, 5 redone; median dt
+  // after the peak 5.3x below the one before (bound 10x); restraint work 0.087 % of the work
+  // (bound 0.5 %); the load down to 2.2 % of the peak. Still above issue 30's bound: 10.8
+  // open-close iterations a step (bound 5; not tested here).
+  test::TempDir dir;
+  Scene scene =
+      read_scene(test::data_file("uniaxial_compression.toml"), {"time.end=4.2", "output.every=0"});
+  scene.time.stop_at_softening.reset();
+  const auto run = test::run_scene(scene, dir.path(), 1);
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& force = run.history.at("top.fy");
+  const auto& dt = run.history.at("dt");
+  EXPECT_NEAR(run.history.at("time").back(), 4.2, 1e-9);
+  std::size_t peak = 0;
+  for (std::size_t i = 0; i < force.size(); ++i)
+    if (std::abs(force[i]) > std::abs(force[peak])) peak = i;
+  // Steps of no length (an onset's damage) are not steps of the load.
+  auto median_dt = [&](std::size_t from, std::size_t to) {
+    std::vector<double> steps;
+    for (std::size_t i = std::max<std::size_t>(from, 1); i < to; ++i)
+      if (dt[i] > 0.0) steps.push_back(dt[i]);
+    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+    return steps[steps.size() / 2];
+  };
+  EXPECT_LT(median_dt(0, peak), 10.0 * median_dt(peak, dt.size()));
+  EXPECT_LT(std::abs(force.back()), 0.05 * std::abs(force[peak]));
+  const auto& energy = run.result.summary["energy"];
+  EXPECT_LT(energy["anchor_work"].get<double>(), 0.005 * energy["external_work"].get<double>());
 }
 
 TEST(UniaxialCompression, SeedsGiveDifferentPeaks) {
