@@ -443,15 +443,14 @@ ContactStage::ShearUpdate ContactStage::update_shear_with_inertia(Contact& c, do
   if (before == ContactState::sliding) c.shear_spring = c.anchor_start;
   const double elastic = c.shear_spring + slip;
   const double capacity = shear_capacity(c, normal_force, ks * elastic, tolerance, out.bond_broke);
-  if (capacity > 0.0 && ks * std::abs(elastic) <= capacity) {
-    c.state = ContactState::locked;
-    out.implied = ks * elastic;
-  } else if (capacity > 0.0 && before == ContactState::sliding && elastic * c.slip_sign < 0.0) {
-    // It slid back past its anchor under the friction load: friction was more than enough
-    // to hold it, so it sticks at its anchor, and the next solve's spring finds the force
-    // that holds it there. Locked where the friction load had pushed it, with that load kept
-    // in its spring, it pushed the vertex on along the step's slip (docs/method-choices.md,
-    // "Energy at a landing").
+  // Within the capacity it holds. A sliding contact that slid back past its anchor under the
+  // friction load holds too: friction was more than enough, so it sticks at its anchor, and
+  // the next solve's spring finds the force that holds it there. Locked where the friction
+  // load had pushed it, with that load kept in its spring, it pushed the vertex on along the
+  // step's slip (docs/method-choices.md, "Energy at a landing").
+  const bool within = ks * std::abs(elastic) <= capacity;
+  const bool slid_back = before == ContactState::sliding && elastic * c.slip_sign < 0.0;
+  if (capacity > 0.0 && (within || slid_back)) {
     c.state = ContactState::locked;
     out.implied = ks * elastic;
   } else {
