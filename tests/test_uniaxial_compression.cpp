@@ -210,6 +210,9 @@ TEST(UniaxialCompression, PaperSpecimenEndsSplitByAFractureIntoFewLargeBlocks) {
     EXPECT_LE(std::abs(energy.at("unaccounted").get<double>()) +
                   std::abs(energy.at("anchor_work").get<double>()),
               0.02 * work.back());
+    // Issue 30: the fragment restraint holds at most 0.5 % of the work when steps end
+    // (measured 0.031, 0.018, 0.075 % for seeds 1-3).
+    EXPECT_LE(energy.at("anchor_work").get<double>(), 5e-3 * work.back());
     // No re-solve creates what the balance would hide as negative snap-back: at most 0.5 %
     // of the work (seed 2 created 3.6 % while pieces cut loose kept stale stiffness frames,
     // docs/method-choices.md "Parts cut loose inside a step"). Measured with located onsets:
