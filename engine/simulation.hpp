@@ -176,10 +176,10 @@ class Simulation {
   /// fragment restraint is rebuilt over the parts. True when the springs changed.
   bool hold_parts_cut_loose();
   /// Without inertia, after a solve that settles the committed state's imbalance or a damage
-  /// pass: when the fragment restraint's springs hold more than kRestraintRelaxationTrigger of
-  /// the stored energy, they are re-anchored where the solve left the parts and the open-close
+  /// pass: when the fragment restraint's springs hold more than fracture.restraint_relaxation
+  /// of the stored energy, they are re-anchored where the solve left the parts and the open-close
   /// iteration solves again (on the same factor), until they hold less than kRestraintRelaxed
-  /// of it, so that the parts end where their contacts and the rock balance them, not held
+  /// of that share, so that the parts end where their contacts and the rock balance them, not held
   /// back towards where the step started. A relaxation is taken back exactly (increment,
   /// contacts, anchors) when what the springs hold does not halve (a part only they hold),
   /// when the increment would pass its limits, or when its open-close iteration does not

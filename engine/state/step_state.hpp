@@ -24,8 +24,8 @@ struct StepState {
   std::vector<double> u_trial;                 // committed u plus the prescribed increment
   std::vector<double> du;                      // the step's displacement increment
   std::vector<double> f_contact;               // contact spring forces at the trial state
-  std::vector<double> contact_force_solved;    // with inertia: what the last solve's contacts
-                                               // pushed (f_ext - f_int - m a at nodes in contact)
+  std::vector<double> contact_force_solved;    // with DDA's inertia: the contact forces the
+                                               // last solve had, before its update switched any
   std::vector<double> positions;               // scratch: X + u for geometry queries
   std::vector<double> damage_force;            // f_int at the step's result, for damage checks
   std::vector<double> restraint_force;         // fragment restraint's force on the increment
