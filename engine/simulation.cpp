@@ -13,6 +13,7 @@
 #include "engine/common/errors.hpp"
 #include "engine/contact/contact_stage.hpp"
 #include "engine/damage/damage_stage.hpp"
+#include "engine/damage/disintegration.hpp"
 #include "engine/loading/external_loads.hpp"
 #include "engine/loading/initial_motion.hpp"
 #include "engine/output/probes.hpp"
@@ -93,6 +94,8 @@ Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> me
   }
   if (!scene_.joints.empty()) contact_ = std::make_unique<ContactStage>(scene_, model_, analysis_);
   if (!model_.tensile_strength.empty()) damage_ = std::make_unique<DamageStage>(scene_, model_);
+  watch_disintegration_ = damage_ && analysis_ == Analysis::quasi_static &&
+                          fracturing_block_spread(model_).largest_share >= kFragmentShare;
   rebuild_layout();
   // The step loop's timers start at zero: what the first layout took is set-up.
   std::swap(report_.setup_timers.layout, report_.timers.layout);
@@ -231,6 +234,12 @@ RunResult Simulation::run(const RunOptions& options) {
       record_committed_state(detached);
       t += dt;
       counters.steps = step;
+      // Loose fragments have no quasi-static equilibrium: only the restraint and the mass
+      // term would hold them, so the balance could not close. The answer is the run so far.
+      if (detached && watch_disintegration_ && analysis_ == Analysis::quasi_static)
+        if (const BlockSpread spread = fracturing_block_spread(model_);
+            spread.largest_share < kFragmentShare)
+          report_.disintegration = Disintegration{step, t, spread};
       // A step that damaged nothing and ends at no onset lets a shortened dt grow back to the
       // scene's; a quiet one (no contact switched either) lets dt grow past it, up to dt_max.
       // The next located onset takes dt back to the scene's.
@@ -241,7 +250,8 @@ RunResult Simulation::run(const RunOptions& options) {
       const StepReport report{step, t, dt, end_time, planned};
       if (!fracture_failure && options.keep_going && !options.keep_going(report, model_))
         report_.stopped_by_caller = true;
-      const bool last = t >= end_time * (1.0 - 1e-12) || report_.stopped_by_caller;
+      const bool last = t >= end_time * (1.0 - 1e-12) || report_.stopped_by_caller ||
+                        report_.disintegration.has_value();
       const bool stop = record(step, t, dt, last || fracture_failure.has_value());
       if (fracture_failure) {
         frame_written = true;

@@ -224,6 +224,9 @@ class Simulation {
   ElementColoring coloring_;
   EdgeAdjacency edges_;                 // of model_.conn, kept through detachments
   std::vector<std::uint8_t> detached_;  // per element
+  // A quasi-static specimen that starts in at least one block larger than a fragment ends when
+  // fracture leaves none (engine/damage/disintegration).
+  bool watch_disintegration_ = false;
   bool corotational_ = false;  // strain in co-rotated element frames (not in static analysis)
   std::unique_ptr<Probes> probes_;
   std::unique_ptr<ContactStage> contact_;  // only for scenes with [[joint]] or fracture

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <numeric>
 #include <vector>
 
@@ -278,6 +279,56 @@ TEST(UniaxialCompression, RunPastFailureKeepsItsStep) {
   EXPECT_LT(std::abs(force.back()), 0.05 * std::abs(force[peak]));
   const auto& energy = run.result.summary["energy"];
   EXPECT_LT(energy["anchor_work"].get<double>(), 0.005 * energy["external_work"].get<double>());
+}
+
+TEST(UniaxialCompression, HomogeneousSpecimenRunPastItsPeakReachesItsEndOrSaysItFellApart) {
+  // Issue 30: data/verification/ucs_confined.toml, 1,600 elements confined by p = 20 MPa, run
+  // on to twice the peak's travel without a softening stop. Mohr-Coulomb with three principal
+  // stresses (METHOD.md): damage starts everywhere when
+  // sigma_1 = fc0 + sigma_3 (1 + sin phi) / (1 - sin phi), fc0 = 2 c cos phi / (1 - sin phi).
+  const double c = 100e6, phi = 20.0 * std::numbers::pi / 180.0, p = 20e6, width = 0.075;
+  const double fc0 = 2.0 * c * std::cos(phi) / (1.0 - std::sin(phi));
+  const double confined = fc0 + p * (1.0 + std::sin(phi)) / (1.0 - std::sin(phi));
+  auto peak_stress = [&](const test::SceneRun& run) {
+    double peak = 0.0;
+    for (const double f : run.history.at("top.fy")) peak = std::max(peak, -f / width);
+    return peak;
+  };
+  {
+    // Plane strain: sigma_3 = p (sigma_z = nu (sigma_x + sigma_y) is larger). The damaged
+    // specimen keeps its residual stiffness and carries load to the end. Measured: peak
+    // 326.56 MPa (closed form 326.40), 282 steps of the 280 planned, balance closed.
+    const auto run = test::run_data_scene("verification/ucs_confined.toml", {"output.every=0"});
+    ASSERT_TRUE(run.result.ok) << run.result.reason;
+    EXPECT_NEAR(peak_stress(run), confined, 0.005 * confined);
+    EXPECT_NEAR(run.history.at("time").back(), 14.0, 1e-9);
+    EXPECT_LT(run.result.summary["steps"].get<long>(), 2 * 280);
+    EXPECT_FALSE(run.result.summary.contains("disintegration"));
+    EXPECT_TRUE(run.result.summary["energy_check"]["balance_closes"].get<bool>());
+  }
+  {
+    // Plane stress, the scene issue 30 ran: the out-of-plane stress (0) is the minor one, so
+    // the peak is fc0. Every element damages in one cascade and breaks within the steps
+    // after; the pressure then pushes loose triangles that only the restraint holds. It used
+    // to go on at dt ~ 2e-5 s (82,000 steps in 10 minutes, t = 8.7 s of 14); it now ends at
+    // the step that broke it, and says so. Measured: peak 285.77 MPa (fc0 285.60), ended at
+    // step 132 (t = 6.525 s) with 1,592 blocks, the largest 0.44 % of the specimen.
+    const auto run = test::run_data_scene("verification/ucs_confined.toml",
+                                          {"output.every=0", "scene.plane=\"stress\""});
+    ASSERT_TRUE(run.result.ok) << run.result.reason;
+    EXPECT_NEAR(peak_stress(run), fc0, 0.005 * fc0);
+    const auto& summary = run.result.summary;
+    ASSERT_TRUE(summary.contains("disintegration"));
+    const auto& end = summary["disintegration"];
+    EXPECT_EQ(end["step"].get<long>(), summary["steps"].get<long>());
+    EXPECT_LT(end["step"].get<long>(), 200);
+    EXPECT_NEAR(end["time"].get<double>(), run.history.at("time").back(), 1e-12);
+    EXPECT_LT(end["largest_block_share"].get<double>(), 0.01);
+    EXPECT_GT(end["blocks"].get<int>(), 100);
+    // Its balance is open (the restraint holds the last step's fragments), and says why.
+    const std::string warning = summary["energy_check"].value("warning", "");
+    EXPECT_NE(warning.find("loose fragments"), std::string::npos) << warning;
+  }
 }
 
 TEST(UniaxialCompression, SeedsGiveDifferentPeaks) {

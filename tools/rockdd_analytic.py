@@ -119,6 +119,16 @@ def mohr_coulomb_ucs(cohesion, friction_angle):
     return 2.0 * cohesion * np.cos(friction_angle) / (1.0 - np.sin(friction_angle))
 
 
+def mohr_coulomb_confined(cohesion, friction_angle, confinement):
+    """Major principal stress at which the Mohr-Coulomb criterion (METHOD.md, shear damage)
+    starts with the minor principal stress c3 = confinement (compression positive):
+      c1 = fc0 + c3 (1 + sin(phi)) / (1 - sin(phi)).
+    friction_angle in radians.
+    """
+    k = (1.0 + np.sin(friction_angle)) / (1.0 - np.sin(friction_angle))
+    return mohr_coulomb_ucs(cohesion, friction_angle) + confinement * k
+
+
 def hondros_centre_stresses(p, alpha):
     """(sigma_x, sigma_y) at the centre of a disk loaded by a uniform radial pressure p on two
     opposite arcs of half-angle alpha (rad) about the y axis, tension positive.

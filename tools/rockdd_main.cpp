@@ -418,6 +418,14 @@ int run(const Options& o, std::optional<double> startup) {
               << " blocks, " << result.summary["wall_seconds"].get<double>() << " s";
     if (result.summary.contains("softening") && result.summary["softening"]["reached"] == true)
       std::cerr << ", ended on softening at t = " << result.summary["softening"]["time"] << " s";
+    if (result.summary.contains("disintegration")) {
+      const auto& d = result.summary["disintegration"];
+      std::cerr << ", ended at step " << d["step"] << " (t = " << d["time"].get<double>()
+                << " s): fracture left the specimen in " << d["blocks"]
+                << " loose fragments, the largest " << 100 * d["largest_block_share"].get<double>()
+                << " % of it, so nothing of it carries load (analysis = \"dynamic\" follows "
+                   "fragments)";
+    }
     std::cerr << "; outputs in " << out_dir.string() << "\n";
   }
   return 0;

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "engine/common/timers.hpp"
+#include "engine/damage/disintegration.hpp"
 #include "engine/report/softening_monitor.hpp"
 
 namespace rockdd {
@@ -45,6 +46,7 @@ struct RunReport {
   SetupTimers setup_timers;  // building the Simulation
   SofteningMonitor softening;
   std::optional<InertiaSwitch> inertia_switch;
+  std::optional<Disintegration> disintegration;  // the quasi-static specimen fell apart
   bool stopped_by_caller = false;  // RunOptions::keep_going said false
 };
 

@@ -153,7 +153,11 @@ nlohmann::json run_summary(const RunSummaryInputs& in) {
                    {"unaccounted", e.unaccounted()}};
     // The share every figure is measured against, and what the step control's check saw.
     const double scale = EnergyCheck::scale(e);
-    const std::string open = energy_balance_warning(e, kEnergyBalanceShare, in.energy_check);
+    std::string open = energy_balance_warning(e, kEnergyBalanceShare, in.energy_check);
+    if (!open.empty() && in.report.disintegration)
+      open += "; its last step (" + std::to_string(in.report.disintegration->step) +
+              ") broke the specimen into loose fragments, which quasi-static steps hold only "
+              "by the restraint and the mass term (summary.json disintegration)";
     s["energy_check"] = {{"scale", scale},
                          {"tolerance", in.energy_check.tolerance()},
                          {"created", in.energy_check.total_created()},
@@ -202,6 +206,12 @@ nlohmann::json run_summary(const RunSummaryInputs& in) {
                       {"time", m.time},
                       {"value", m.value}};
   }
+  if (const std::optional<Disintegration>& d = in.report.disintegration)
+    s["disintegration"] = {{"step", d->step},
+                           {"time", d->time},
+                           {"blocks", d->spread.blocks},
+                           {"largest_block_share", d->spread.largest_share},
+                           {"fragment_share", kFragmentShare}};
   if (in.report.stopped_by_caller) s["stopped_by_caller"] = true;
   return s;
 }
