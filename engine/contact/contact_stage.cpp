@@ -51,6 +51,10 @@ void linearise(Contact& c, std::span<const double> positions) {
   c.gap_start = ve.gap;
 }
 
+/// Faces closer than this share of the contact reach touch (meshed onto each other, up to
+/// round-off).
+constexpr double kTouchingGap = 1e-9;
+
 double linear_gap(const Contact& c, std::span<const double> positions) {
   return c.gap_offset + dot_contact(c.g, c, positions);
 }
@@ -198,7 +202,7 @@ bool ContactStage::detect(std::span<const double> positions, std::span<const Con
       // Faces meshed onto each other touch up to round-off: they start closed, and a joint
       // with cohesion or tensile strength holds them bonded until it slides or opens; faces
       // that meet later touch without a bond.
-      const bool touching = gap <= 1e-9 * rules_.parameters.reach;
+      const bool touching = gap <= kTouchingGap * rules_.parameters.reach;
       c.bonded = touching && !started_ && (c.cohesion > 0.0 || c.tensile_strength > 0.0);
       c.state = !touching                      ? ContactState::open
                 : c.friction > 0.0 || c.bonded ? ContactState::locked
@@ -247,6 +251,18 @@ bool ContactStage::detect(std::span<const double> positions, std::span<const Con
     c.unresisted_overlap = overlap;
     c.gap_offset += overlap;
     c.gap_start += overlap;
+    // Without inertia, a contact that ended the last step closed but is found apart (its
+    // faces parted by more than the linearised gap said, or a detachment moved them) starts
+    // open, as a new pair that far apart would: closed, its spring would pull the faces
+    // together in the first solve, in tension no unbonded face holds, and a step of no length
+    // would count that spring's energy as stored before any solve.
+    if (rules_.parameters.forgive_unresisted_overlap && before != nullptr && !c.bonded &&
+        c.state != ContactState::open && c.gap_start > kTouchingGap * rules_.parameters.reach) {
+      c.state = ContactState::open;
+      c.shear_spring = 0.0;
+      c.friction_force = 0.0;
+      c.slip_sign = 0.0;
+    }
     c.start_normal_force = c.state != ContactState::open && c.gap_start < 0.0
                                ? -rules_.parameters.normal_stiffness * c.gap_start
                                : -1.0;
