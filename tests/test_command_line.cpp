@@ -577,6 +577,29 @@ TEST(CommandLine, HelpNamesWhereTheExampleScenesAndTheSceneReferenceAre) {
 
 /// The coarse compression specimen (400 elements) that ends on softening at 70 % below its
 /// peak, long before time.end.
+TEST(CommandLine, SpecimenThatFallsApartEndsThereAndSaysWhichStep) {
+  // Issue 30: in plane stress the confined homogeneous specimen breaks into loose triangles;
+  // the run ends ok at that step and says so, and the energy warning says why its balance is
+  // open (docs/method-choices.md, "A specimen that falls apart").
+  test::TempDir tmp;
+  const auto inv = test::run_shell(
+      "cd '" + tmp.path().string() + "' && '" + ROCKDD_BINARY + "' run '" +
+      (kSource / "data/verification/ucs_confined.toml").string() +
+      "' --threads 1 --set 'scene.plane=\"stress\"' --out out 2>&1");
+  ASSERT_EQ(inv.exit_code, 0) << inv.output;
+  const auto summary =
+      nlohmann::json::parse(test::read_text(tmp.path() / "out/ucs-confined/summary.json"));
+  ASSERT_TRUE(summary.contains("disintegration")) << inv.output;
+  const std::string step = std::to_string(summary["disintegration"]["step"].get<long>());
+  EXPECT_EQ(summary["status"], "ok");
+  EXPECT_NE(inv.output.find(", ended at step " + step + " (t = "), std::string::npos)
+      << inv.output;
+  EXPECT_NE(inv.output.find("loose fragments"), std::string::npos) << inv.output;
+  EXPECT_NE(inv.output.find("its last step (" + step + ") broke the specimen"),
+            std::string::npos)
+      << inv.output;
+}
+
 const std::string kSoftening = "run '" + (kSource / "data/uniaxial_compression.toml").string() +
                                "' --threads 2 --set 'mesh.divisions=[10, 20]' --out out";
 
