@@ -595,6 +595,9 @@ TEST(CommandLine, SpecimenThatFallsApartEndsThereAndSaysWhichStep) {
   EXPECT_NE(inv.output.find(", ended at step " + step + " (t = "), std::string::npos)
       << inv.output;
   EXPECT_NE(inv.output.find("loose fragments"), std::string::npos) << inv.output;
+  // The log's last progress line says the run is done, with nothing left to wait for.
+  EXPECT_NE(inv.output.find("100.0% done  ended: fell apart"), std::string::npos) << inv.output;
+  EXPECT_NE(inv.output.find("ETA 00:00:00"), std::string::npos) << inv.output;
   EXPECT_NE(inv.output.find("its last step (" + step + ") broke the specimen"),
             std::string::npos)
       << inv.output;

@@ -304,12 +304,17 @@ class Progress {
   }
 
   /// Ends the progress output: the run's last state, and a newline on a terminal, so that
-  /// the next message starts a line of its own.
-  void finish() {
+  /// the next message starts a line of its own. `fell_apart`: the run ended before its end
+  /// because its specimen fell apart (summary.json disintegration): nothing is left to do.
+  void finish(bool fell_apart = false) {
     if (quiet_ || finished_) return;
     finished_ = true;
-    if (last_report_ && last_printed_step_ != last_report_->step)
+    if (fell_apart && last_report_) {
+      ended_ = "  ended: fell apart";
+      print_line(*last_report_, 1.0, Clock::now());
+    } else if (last_report_ && last_printed_step_ != last_report_->step) {
       print_line(*last_report_, fraction_done(*last_report_), Clock::now());
+    }
     if (tty_ && line_open_) std::fputc('\n', stderr);
     line_open_ = false;
     std::fflush(stderr);
@@ -336,7 +341,9 @@ class Progress {
                             : fraction > 0  ? rockdd::clock_time(elapsed * (1 - fraction) / fraction)
                                             : "--";
     char what[96] = "";
-    if (softened_ > 0.0 && softened_ >= r.time / std::max(r.end_time, 1e-300))
+    if (!ended_.empty())
+      std::snprintf(what, sizeof what, "%s", ended_.c_str());
+    else if (softened_ > 0.0 && softened_ >= r.time / std::max(r.end_time, 1e-300))
       std::snprintf(what, sizeof what, "  softened %.0f%% of %.0f%%", 100 * fallen_,
                     100 * softening_drop_);
     if (tty_) {
@@ -362,6 +369,7 @@ class Progress {
   long column_ = -1;
   double peak_ = 0.0;
   double fallen_ = 0.0;    // the watched column's fall below its peak now, a fraction of it
+  std::string ended_;  // why the run ended before its end time, for the last line
   double softened_ = 0.0;  // the most of the fall that ends the run seen so far, in [0, 1]
   int last_decile_ = -1;
   bool line_open_ = false, finished_ = false;
@@ -400,7 +408,7 @@ int run(const Options& o, std::optional<double> startup) {
       });
   const rockdd::RunResult result = sim.run(options);
   rockdd::RunOutputs::observe_rows({});
-  progress.finish();
+  progress.finish(result.summary.contains("disintegration"));
   const auto out_dir =
       (options.out_root.empty() ? scene.output.dir : options.out_root) / scene.name;
   // A balance that does not close is said even when quiet: the answer may be wrong.
