@@ -9,6 +9,7 @@
 #include <cmath>
 #include <numbers>
 #include <numeric>
+#include <utility>
 #include <vector>
 
 #include "support/data_file.hpp"
@@ -163,7 +164,9 @@ TEST(UniaxialCompression, PaperSpecimenEndsSplitByAFractureIntoFewLargeBlocks) {
   // adjacent sides in seeds 1 and 2 (top to right, left to bottom) and between opposite sides
   // in seed 3; largest gap 0.8 % (seed 3). With located onsets each seed ends with two
   // blocks of >= 10 % of the area (through-going, below).
-  for (const char* seed : {"material.0.seed=1", "material.0.seed=2", "material.0.seed=3"}) {
+  const std::pair<const char*, double> seeds[] = {
+      {"material.0.seed=1", 0.05}, {"material.0.seed=2", 0.2}, {"material.0.seed=3", 0.05}};
+  for (const auto& [seed, load_left] : seeds) {
     SCOPED_TRACE(seed);
     const auto run = test::run_data_scene("uniaxial_compression.toml", {seed, "output.every=0"});
     ASSERT_TRUE(run.result.ok) << run.result.reason;
@@ -231,7 +234,9 @@ TEST(UniaxialCompression, PeakDoesNotMoveWithTheLoadStepOnSeedsOneToThree) {
   // 1 % of dt's, seeds 1-3. Measured (dt x 2, dt, dt / 2): seed 1 554,001, 553,990,
   // 553,973 N; seed 2 570,678, 570,661, 570,701 N; seed 3 551,781, 551,978, 551,985 N (at
   // most 0.04 %).
-  for (const char* seed : {"material.0.seed=1", "material.0.seed=2", "material.0.seed=3"}) {
+  const std::pair<const char*, double> seeds[] = {
+      {"material.0.seed=1", 0.05}, {"material.0.seed=2", 0.2}, {"material.0.seed=3", 0.05}};
+  for (const auto& [seed, load_left] : seeds) {
     SCOPED_TRACE(seed);
     std::vector<double> peaks;
     for (const char* dt : {"time.dt=0.00625", "time.dt=0.0125", "time.dt=0.003125"}) {
@@ -255,11 +260,13 @@ TEST(UniaxialCompression, RunPastFailureKeepsItsStep) {
   // than before its peak until contacts found apart started open. Measured, seeds 1 / 2 / 3:
   // 1,287 / 1,449 / 1,600 steps; median dt after the peak 2.0 / 2.7 / 2.7x below the one
   // before (bound 10x); restraint work 0.27 / 0.057 / 0.115 % of the work (bound 0.5 %); the
-  // load at the end 0.04 / 12.4 / 0.4 % of the peak (bound 20 %: seed 2's blocks stay
-  // wedged). Still above issue 30's bounds, not tested here: 10.3 / 7.6 / 14.0 open-close
+  // load at the end 0.04 / 12.4 / 0.4 % of the peak (bound 5 %, 20 % for seed 2, whose
+  // blocks stay wedged). Still above issue 30's bounds, not tested here: 10.3 / 7.6 / 14.0 open-close
   // iterations a step (bound 5), and balances open by 13.3 / 5.2 / 1.7 % created
   // (docs/method-choices.md, "A redone step's mass term").
-  for (const char* seed : {"material.0.seed=1", "material.0.seed=2", "material.0.seed=3"}) {
+  const std::pair<const char*, double> seeds[] = {
+      {"material.0.seed=1", 0.05}, {"material.0.seed=2", 0.2}, {"material.0.seed=3", 0.05}};
+  for (const auto& [seed, load_left] : seeds) {
     SCOPED_TRACE(seed);
     test::TempDir dir;
     Scene scene = read_scene(test::data_file("uniaxial_compression.toml"),
@@ -282,7 +289,7 @@ TEST(UniaxialCompression, RunPastFailureKeepsItsStep) {
       return steps[steps.size() / 2];
     };
     EXPECT_LT(median_dt(0, peak), 10.0 * median_dt(peak, dt.size()));
-    EXPECT_LT(std::abs(force.back()), 0.2 * std::abs(force[peak]));
+    EXPECT_LT(std::abs(force.back()), load_left * std::abs(force[peak]));
     const auto& energy = run.result.summary["energy"];
     EXPECT_LT(energy["anchor_work"].get<double>(),
               0.005 * energy["external_work"].get<double>());
