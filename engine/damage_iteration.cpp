@@ -41,7 +41,6 @@ DamageChange Simulation::evaluate_damage(bool start_onsets) {
   const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band, start_onsets);
   if (change.grown > 0) {
     trial_.damage_changed = true;
-    system_->invalidate();  // the moduli changed
     // Without carried velocity the pass drops the moduli at its own strain and re-solves from
     // there. A dynamic step instead integrates the whole step with the new moduli, from the
     // committed state: that is where its modulus drop takes the energy.
@@ -137,20 +136,16 @@ double Simulation::stored_energy() {
   return energy;
 }
 
-bool Simulation::prepare_next_pass(double mass_coefficient, bool grown) {
+void Simulation::prepare_next_pass(double mass_coefficient) {
   changed_elements(model_, trial_.damage_before, trial_.changed_elements);
-  const bool restraint_changed = hold_parts_cut_loose();
-  const bool folded = !restraint_changed && grown &&
-                      system_->fold_modulus_change(model_, bc_.equation, trial_.changed_elements,
-                                                   trial_.damage_before, mass_coefficient);
-  prepare_system(mass_coefficient);  // nothing left to do once folded
+  hold_parts_cut_loose();
+  prepare_system(mass_coefficient);  // the moduli's change folded into the factor, or assembled
   // The next solve's internal force at u_trial under the new moduli: bitwise what a full
   // recomputation gives (the same kernel per element, summed in the same order).
   ScopedTimer timer(report_.timers.assembly);
   refresh_element_forces(model_, trial_.u_trial, trial_.changed_elements,
                          trial_.trial_element_force, corotational_);
   sum_element_forces(model_, coloring_, trial_.trial_element_force, trial_.f_int);
-  return folded;
 }
 
 bool Simulation::hold_parts_cut_loose() {
@@ -204,7 +199,7 @@ void Simulation::relax_restraint(long step, int retries, const InertiaTerms& ine
     }
     fragments_.follow(trial_.du);
     set_restraint_force();
-    const bool settled = open_close_iteration(step, retries, inertia, nullptr, true);
+    const bool settled = open_close_iteration(step, retries, inertia, nullptr);
     ++report_.counters.restraint_relaxations;
     double largest = 0.0;
     for (const double du : trial_.du) largest = std::max(largest, std::abs(du));

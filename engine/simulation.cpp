@@ -240,12 +240,16 @@ RunResult Simulation::run(const RunOptions& options) {
         if (const BlockSpread spread = fracturing_block_spread(model_);
             spread.largest_share < kFragmentShare)
           report_.disintegration = Disintegration{step, t, spread};
-      // A step that damaged nothing and ends at no onset lets a shortened dt grow back to the
-      // scene's; a quiet one (no contact switched either) lets dt grow past it, up to dt_max.
-      // The next located onset takes dt back to the scene's.
+      // A step that ends at no onset lets a shortened dt grow back to the scene's. Where onsets
+      // are located it may have damaged: onsets and growth do not follow the step's length
+      // there, and a run past its peak, which damages in nearly every step, would otherwise
+      // stay at the dt of its worst rejection. A quiet one (nothing damaged, no contact
+      // switched) lets dt grow past the scene's, up to dt_max. The next located onset takes
+      // dt back to the scene's.
       if (dt > 0.0) {
-        const bool easy = !trial_.damage_changed && !onset_damage_next;
-        control.accept(easy, easy && !trial_.contact_changed);
+        const bool located = scene_.fracture.locate_onsets && analysis_ != Analysis::dynamic;
+        const bool easy = !onset_damage_next && (located || !trial_.damage_changed);
+        control.accept(easy, easy && !trial_.damage_changed && !trial_.contact_changed);
       }
       const StepReport report{step, t, dt, end_time, planned};
       if (!fracture_failure && options.keep_going && !options.keep_going(report, model_))
@@ -297,15 +301,11 @@ void Simulation::begin_attempt(double time, double load_factor) {
   model_.strain = committed_.strain;
   model_.stress = committed_.stress;
   if (!damage_) return;
-  if (model_.damage != committed_.damage) {
-    model_.damage = committed_.damage;
-    system_->invalidate();  // the moduli changed back
-  }
+  model_.damage = committed_.damage;         // the system follows it back (LinearSystem::prepare)
   if (fragments_ != committed_.restraint) {  // springs or anchors
     if (!fragments_.same_springs(committed_.restraint)) system_->invalidate();
     fragments_ = committed_.restraint;
   }
-  system_->drop_folded_changes();
 }
 
 double Simulation::inertia_step(double dt, const StepControl& control) const {
@@ -381,16 +381,13 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
   // The damage of an onset the last step located runs where it was located: from the
   // committed state, before any solve (which would first settle the growth that step left).
   const bool located_onset_damage = damage_ && onset_at_start;
-  bool factor_current = false;  // a folded damage pass left the factor holding the next system
   for (int pass = 1;; ++pass) {
     const bool solved = !(pass == 1 && located_onset_damage);
-    if (solved && !open_close_iteration(step, retries, inertia, &control, factor_current))
-      return Attempt::rejected;
+    if (solved && !open_close_iteration(step, retries, inertia, &control)) return Attempt::rejected;
     // A settling or cascading solve moves parts by what the rock released, not by what the
     // step's length chose: the restraint's springs let them go where that takes them.
     if (solved && count_snap_back && damage_ && (pass > 1 || settle_start))
       relax_restraint(step, retries, inertia, control);
-    factor_current = false;
     // Without inertia the first solve ends balanced against its mass term c M du, not at rest,
     // and starts from the committed state's imbalance: the work of both over du (trapezoidal)
     // is what the loads did beyond what the body stores, which a dynamic run would turn into
@@ -455,7 +452,7 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
       break;
     }
     ++report_.counters.damage_iterations;
-    factor_current = prepare_next_pass(inertia.mass_coefficient, change.grown > 0);
+    prepare_next_pass(inertia.mass_coefficient);
   }
   return increment_acceptable(step, control) ? Attempt::accepted : Attempt::rejected;
 }
@@ -489,15 +486,16 @@ bool Simulation::commit_checked_step(long step, double dt, const EnergyBalance& 
 }
 
 bool Simulation::open_close_iteration(long step, int retries, const InertiaTerms& inertia,
-                                      StepControl* control, bool factor_current) {
+                                      StepControl* control) {
   const std::size_t num_dofs = model_.X.size();
   RunStats& counters = report_.counters;
   // The open-close iteration (a single solve without contacts): assume states, solve, check.
   const int limit = analysis_ == Analysis::dynamic ? kMaxOpenCloseIterations
                                                    : kMaxOpenCloseIterationsWithoutInertia;
   int iterations = 0;
-  // factor_current: the factor already holds this iteration's system (springs switched by
-  // updates in the last iteration, or moduli folded in by the last damage pass).
+  // The factor already holds this iteration's system: the springs that switched in the last
+  // iteration were folded in by updates.
+  bool factor_current = false;
   while (true) {
     ++iterations;
     solve_iteration(step, inertia, factor_current);

@@ -130,10 +130,9 @@ class Simulation {
   bool commit_checked_step(long step, double dt, const EnergyBalance& before,
                            StepControl& control);
   /// The open-close iteration of one step from the trial state; false when it did not settle
-  /// (and then, given a `control`, the step is rejected there). `factor_current`: the factor
-  /// already holds this step's system (a folded damage pass).
+  /// (and then, given a `control`, the step is rejected there).
   bool open_close_iteration(long step, int retries, const InertiaTerms& inertia,
-                            StepControl* control, bool factor_current);
+                            StepControl* control);
   /// One solve of the open-close iteration: contact springs, factorization (unless
   /// `factor_current`), solve; fills the trial's du.
   void solve_iteration(long step, const InertiaTerms& inertia, bool factor_current);
@@ -169,8 +168,8 @@ class Simulation {
   double stored_energy();
   /// After a damage pass that newly damaged elements: the restraint of parts it cut loose,
   /// the factor (folded by updates when cheaper, or reassembled) and the trial internal force
-  /// under the new moduli. True when the factor already holds the next system.
-  bool prepare_next_pass(double mass_coefficient, bool grown);
+  /// under the new moduli.
+  void prepare_next_pass(double mass_coefficient);
   /// Without inertia, after a damage pass in which elements broke (w reached 1): a part that
   /// only they joined to what holds it is loose until the step ends and detaches them, so the
   /// fragment restraint is rebuilt over the parts. True when the springs changed.

@@ -257,15 +257,17 @@ TEST(UniaxialCompression, RunPastFailureKeepsItsStep) {
   // and its mass term (the quasi-static regulariser) follows the shorter step. With the
   // scene's dt in it whatever the cut, every halving posed the same problem, and seeds 1 and 2
   // failed (steps 1,450 and 961) with dt below dt_min; seed 2 then ran in steps 40x shorter
-  // than before its peak until contacts found apart started open. Measured, seeds 1 / 2 / 3:
-  // 1,287 / 1,449 / 1,600 steps; median dt after the peak 2.0 / 2.7 / 2.7x below the one
-  // before (bound 10x); restraint work 0.27 / 0.057 / 0.115 % of the work (bound 0.5 %); the
-  // load at the end 0.04 / 12.4 / 0.4 % of the peak (bound 5 %, 20 % for seed 2, whose
-  // blocks stay wedged). Still above issue 30's bounds, not tested here: 10.3 / 7.6 / 14.0 open-close
-  // iterations a step (bound 5), and balances open by 13.3 / 5.2 / 1.7 % created
+  // than before its peak until contacts found apart started open. A halved dt grows back
+  // after steps that damaged (onsets are located whatever the step's length): held at its
+  // worst rejection's dt, seed 2 took 5,517 steps, 2,764 of them in its last 0.3 s at a
+  // median dt of 2e-6 s. Measured, seeds 1 / 2 / 3: 1,054 / 1,293 / 1,549 steps; median dt
+  // after the peak 1.0 / 1.9 / 2.7x below the one before (bound 10x); restraint work 0.17 /
+  // 0.06 / 0.12 % of the work (bound 0.5 %); the load at the end 0.1 / 1.7 / 0.4 % of the
+  // peak (bound 5 %). Still above issue 30's bounds, not tested here: 10.4 / 9.9 / 14.2
+  // open-close iterations a step (bound 5), and balances open by 3.3 / 1.2 / 1.4 % created
   // (docs/method-choices.md, "A redone step's mass term").
   const std::pair<const char*, double> seeds[] = {
-      {"material.0.seed=1", 0.05}, {"material.0.seed=2", 0.2}, {"material.0.seed=3", 0.05}};
+      {"material.0.seed=1", 0.05}, {"material.0.seed=2", 0.05}, {"material.0.seed=3", 0.05}};
   for (const auto& [seed, load_left] : seeds) {
     SCOPED_TRACE(seed);
     test::TempDir dir;

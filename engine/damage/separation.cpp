@@ -2,13 +2,18 @@
 
 #include <algorithm>
 #include <functional>
-#include <numeric>
 
 namespace rockdd {
 
 SeparationWatch::SeparationWatch(const Model& model, double share)
     : sides_(build_edge_adjacency(model.conn, "separation")),
-      least_area_(share * std::accumulate(model.area0.begin(), model.area0.end(), 0.0)) {
+      rock_(static_cast<std::size_t>(model.num_elements())) {
+  double rock_area = 0.0;
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+    rock_[e] = model.materials[model.element_material[e]].has_damage() ? 1 : 0;
+    if (rock_[e]) rock_area += model.area0[e];
+  }
+  least_area_ = share * rock_area;
   // Counted on the intact mesh: joints and blocks the scene starts with are not a separation.
   const std::vector<double> intact(model.damage.size(), 0.0);
   parts_at_start_ = large_parts(model, intact).size();
@@ -27,7 +32,7 @@ std::vector<double> SeparationWatch::large_parts(const Model& model,
   std::vector<std::int32_t> stack;
   std::vector<double> parts;
   for (std::int32_t seed = 0; seed < num_elements; ++seed) {
-    if (seen[seed] || damage[seed] > 0.0) continue;
+    if (seen[seed] || !rock_[seed] || damage[seed] > 0.0) continue;
     double area = 0.0;
     seen[seed] = 1;
     stack.assign(1, seed);
@@ -37,7 +42,7 @@ std::vector<double> SeparationWatch::large_parts(const Model& model,
       area += model.area0[e];
       for (int k = 0; k < 3; ++k) {
         const std::int32_t n = sides_.neighbor[3 * e + k];
-        if (n < 0 || seen[n] || damage[n] > 0.0) continue;
+        if (n < 0 || seen[n] || !rock_[n] || damage[n] > 0.0) continue;
         seen[n] = 1;
         stack.push_back(n);
       }

@@ -10,9 +10,11 @@
 
 namespace rockdd {
 
-/// Watches the intact parts of a model: the sets of undamaged elements (w = 0) joined through
-/// shared sides. A body is separated when more parts of at least `share` of the whole area
-/// exist than did before any damage.
+/// Watches the intact parts of a model's rock: the sets of undamaged elements (w = 0) of
+/// damageable materials joined through shared sides. Elements that cannot damage (a platen, a
+/// cushion, an elastic end over a support) are no part of it: bonded across a crack, they
+/// would join what the crack separated. The rock is separated when more parts of at least
+/// `share` of its area exist than did before any damage.
 class SeparationWatch {
  public:
   /// Takes the sides shared in `model`'s mesh as it is now (undamaged) and its parts.
@@ -27,6 +29,7 @@ class SeparationWatch {
   std::vector<double> large_parts(const Model& model, std::span<const double> damage) const;
 
   EdgeAdjacency sides_;
+  std::vector<std::uint8_t> rock_;  // per element: of a damageable material
   double least_area_ = 0.0;
   std::size_t parts_at_start_ = 0;
 };

@@ -86,8 +86,12 @@ void LinearSystem::factorize() {
 void LinearSystem::prepare(const Model& model, const ElementColoring& coloring,
                            std::span<const std::int32_t> equation, double mass_coefficient,
                            DiagonalSprings restraint) {
-  if (assembled_for_ == mass_coefficient || num_equations_ == 0) return;
-  {
+  if (num_equations_ == 0) return;
+  if (assembled_for_ == mass_coefficient) {
+    changed_elements(model, values_damage_, changed_);
+    if (!changed_.empty() && !fold_damage_change(model, equation)) assembled_for_.reset();
+  }
+  if (assembled_for_ != mass_coefficient) {
     ScopedTimer timer(timers_.assembly);
     const std::span<double> target = base();
     assemble_stiffness(model, coloring, layout_, equation, mass_coefficient, target);
@@ -95,16 +99,45 @@ void LinearSystem::prepare(const Model& model, const ElementColoring& coloring,
       const std::int32_t eq = equation[restraint.dofs[i]];
       if (eq >= 0) target[layout_.diagonal[eq]] += restraint.stiffness[i];
     }
-    values_folded_ = false;
+    assembled_for_ = mass_coefficient;
+    values_damage_ = model.damage;
+    factor_holds_base_ = false;
+    factored_springs_.reset();
   }
-  assembled_for_ = mass_coefficient;
-  factored_springs_.reset();
-  if (!contact_springs_) factorize();  // else at every open-close iteration, with the springs
+  if (!contact_springs_ && !factor_holds_base_) {  // else with the springs, when they are known
+    factorize();
+    factor_holds_base_ = true;
+  }
+}
+
+bool LinearSystem::fold_damage_change(const Model& model, std::span<const std::int32_t> equation) {
+  // Only a factor of exactly these values can follow them; and a fresh assembly is the
+  // better start for a factorization that is due anyway.
+  const bool factor_known = factor_holds_base_ && (!contact_springs_ || factored_springs_);
+  if (!factor_updates_ || !factor_known) return false;
+  await_analysis();
+  ScopedTimer timer(timers_.factorization);
+  modulus_change_terms(model, equation, changed_, values_damage_, moduli_added_, moduli_removed_);
+  const std::int64_t columns = moduli_added_.num_columns() + moduli_removed_.num_columns();
+  if (!solver_.update_expected_faster(columns)) return false;
+  try {
+    if (moduli_removed_.num_columns() > 0) solver_.update(moduli_removed_, false);
+    if (moduli_added_.num_columns() > 0) solver_.update(moduli_added_, true);
+  } catch (const RunFailure&) {
+    factor_holds_base_ = false;  // unusable: refactorized from fresh values
+    factored_springs_.reset();
+    return false;
+  }
+  add_modulus_change(model, layout_, changed_, values_damage_, base());
+  if (contact_springs_) add_modulus_change(model, layout_, changed_, values_damage_, values_);
+  for (const std::int32_t e : changed_) values_damage_[e] = model.damage[e];
+  ++stats_.folded_damage_passes;
+  return true;
 }
 
 void LinearSystem::add_contact_springs(const SlotMatrices& springs, bool factor_current) {
-  if (!factor_current && factored_springs_ && factored_springs_->slot == springs.slot &&
-      factored_springs_->upper == springs.upper)
+  if (!factor_current && factor_holds_base_ && factored_springs_ &&
+      factored_springs_->slot == springs.slot && factored_springs_->upper == springs.upper)
     return;  // values_ and the factor are already these
   factored_springs_.reset();
   std::copy(base_values_.begin(), base_values_.end(), values_.begin());
@@ -112,10 +145,10 @@ void LinearSystem::add_contact_springs(const SlotMatrices& springs, bool factor_
     scatter_element_matrix(layout_, springs.slot[i],
                            &springs.upper[i * static_cast<std::size_t>(kElementUpperEntries)],
                            values_);
-  if (num_equations_ > 0 && !factor_current) {
-    factorize();
-    factored_springs_ = springs;
-  }
+  if (num_equations_ == 0) return;
+  if (!factor_current) factorize();
+  factor_holds_base_ = true;
+  factored_springs_ = springs;
 }
 
 bool LinearSystem::update_contact_springs(const LowRankTerms& added, const LowRankTerms& removed) {
@@ -123,38 +156,16 @@ bool LinearSystem::update_contact_springs(const LowRankTerms& added, const LowRa
   ScopedTimer timer(timers_.factorization);
   const std::int64_t columns = added.num_columns() + removed.num_columns();
   if (!factor_updates_ || !solver_.update_expected_faster(columns)) return false;
+  // The factor leaves the springs it was known for: add_contact_springs names the new ones.
+  factored_springs_.reset();
   try {
-    factored_springs_.reset();  // the factor leaves the values it was factorized from
     if (added.num_columns() > 0) solver_.update(added, true);
     if (removed.num_columns() > 0) solver_.update(removed, false);
     return true;
   } catch (const RunFailure&) {
+    factor_holds_base_ = false;
     return false;  // refactorized from the springs in the next iteration
   }
-}
-
-bool LinearSystem::fold_modulus_change(const Model& model, std::span<const std::int32_t> equation,
-                                       std::span<const std::int32_t> changed,
-                                       std::span<const double> damage_before,
-                                       double mass_coefficient) {
-  if (!factor_updates_ || num_equations_ == 0) return false;
-  await_analysis();
-  ScopedTimer timer(timers_.factorization);
-  modulus_change_terms(model, equation, changed, damage_before, moduli_added_, moduli_removed_);
-  const std::int64_t columns = moduli_added_.num_columns() + moduli_removed_.num_columns();
-  if (!solver_.update_expected_faster(columns)) return false;
-  factored_springs_.reset();  // the factor leaves the values it was factorized from
-  try {
-    if (moduli_removed_.num_columns() > 0) solver_.update(moduli_removed_, false);
-    if (moduli_added_.num_columns() > 0) solver_.update(moduli_added_, true);
-  } catch (const RunFailure&) {
-    return false;  // the factor is unusable: the caller reassembles and refactorizes
-  }
-  add_modulus_change(model, layout_, changed, damage_before, base());
-  assembled_for_ = mass_coefficient;  // the values are current again
-  values_folded_ = true;
-  ++stats_.folded_damage_passes;
-  return true;
 }
 
 void LinearSystem::solve(std::span<double> rhs) {
@@ -168,11 +179,11 @@ void LinearSystem::solve(std::span<double> rhs) {
   // The factor carries low-rank updates, whose round-off grows with each downdate: the
   // solution is checked against the assembled matrix by its normwise backward error
   // |b - A x| / (max|A| |x| + |b|), max norm (an SPD matrix's largest entry is on its
-  // diagonal), and the matrix refactorized when that exceeds kTrusted. Iterative refinement
-  // with the updated factor was tried and dropped: on the UCS, the disk and the sliding block
-  // every solve was either already below 64 eps or did not improve in 30 refinements
-  // (docs/benchmarks.md, "Damage passes folded into the factor", for the threshold's table).
-  constexpr double kTrusted = 1e-10;
+  // diagonal), and the matrix refactorized when that exceeds trusted_backward_error_ (1e-10).
+  // Iterative refinement with the updated factor was tried and dropped: on the UCS, the disk and
+  // the sliding block every solve was either already below 64 eps or did not improve in 30
+  // refinements (docs/benchmarks.md, "Damage passes folded into the factor", for the threshold's
+  // table).
   const auto n = static_cast<std::size_t>(num_equations_);
   check_rhs_.assign(x, x + n);
   check_residual_.resize(n);
@@ -189,9 +200,8 @@ void LinearSystem::solve(std::span<double> rhs) {
     residual = std::max(residual, std::abs(check_residual_[i]));
   }
   const double scale = largest_a * largest_x + largest_b;
-  if (!(scale > 0.0) || residual <= kTrusted * scale) return;
+  if (!(scale > 0.0) || residual <= trusted_backward_error_ * scale) return;
   ++stats_.untrusted_updated_solves;
-  factored_springs_.reset();
   {
     ScopedTimer refactorization(timers_.factorization);
     solver_.factorize(values_.data());

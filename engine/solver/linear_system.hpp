@@ -23,7 +23,7 @@ namespace rockdd {
 
 /// Counters of the system's updated factors, for summary.json.
 struct LinearSystemStats {
-  long folded_damage_passes = 0;      // damage passes folded into the factor by updates
+  long folded_damage_passes = 0;      // damage changes folded into the factor by updates
   long untrusted_updated_solves = 0;  // solves with an updated factor that failed the check
 };
 
@@ -57,40 +57,38 @@ class LinearSystem {
   /// Waits for the analysis rebuild() started, and rethrows what it threw.
   void await_analysis();
 
-  /// The moduli, the element frames or the restraint changed: the next prepare() assembles.
+  /// The element frames, the restraint or the mass term changed: the next prepare()
+  /// assembles. (A change of damage alone needs no call: prepare() finds it.)
   void invalidate() {
     assembled_for_.reset();
+    factor_holds_base_ = false;
     factored_springs_.reset();
   }
-  /// A step starts from freshly assembled values: folded damage changes do not carry their
-  /// round-off from step to step.
-  void drop_folded_changes() {
-    if (values_folded_) invalidate();
-  }
-  /// Assembles K + c M (c = `mass_coefficient`) and the restraint's springs, unless the values
-  /// already hold them; without contact springs also factorizes.
+  /// Makes the values K + c M (c = `mass_coefficient`) + the restraint's springs at the
+  /// model's damage, and without contact springs factorizes them. Values assembled for this c
+  /// follow a change of damage since (a damage pass, or an attempt taken back) by the rank-3
+  /// terms of the changed elements, folded into the factor by updates when cheaper; otherwise
+  /// they are assembled afresh and the factor waits for the next factorization. So a step
+  /// starts from the factor of the last solve, carried across steps while the solve check
+  /// (solve()) trusts it.
   void prepare(const Model& model, const ElementColoring& coloring,
                std::span<const std::int32_t> equation, double mass_coefficient,
                DiagonalSprings restraint);
   /// K_eff plus the contact springs `springs`; factorized unless `factor_current` (the factor
-  /// already holds exactly this system: updated for the springs that switched, or folded), or
-  /// unless the factor is that of these very springs on these very base values (an attempt
-  /// redone, or cut back at an onset, with nothing changed: bitwise the same factor).
+  /// already holds exactly this system: updated for the springs that switched), or unless the
+  /// factor is already that of these very springs on the current base values (an attempt
+  /// redone or cut back with nothing changed, or a damage change folded in).
   void add_contact_springs(const SlotMatrices& springs, bool factor_current);
   /// The springs that switched in an open-close iteration, folded into the factor when an
   /// update is expected to cost less than a factorization. True when the factor now holds
   /// the next iteration's system; false leaves the factorization to add_contact_springs.
   bool update_contact_springs(const LowRankTerms& added, const LowRankTerms& removed);
-  /// After a damage pass that changed the moduli of `changed` (damage_before[e] to
-  /// model.damage[e]): K(after) - K(before) folded into the factor and the values by updates
-  /// when cheaper. True when done (the system is current at `mass_coefficient`); false when
-  /// nothing was done and the caller must invalidate().
-  bool fold_modulus_change(const Model& model, std::span<const std::int32_t> equation,
-                           std::span<const std::int32_t> changed,
-                           std::span<const double> damage_before, double mass_coefficient);
   /// x = K_eff^{-1} x. While the factor carries updates, the answer is checked against the
   /// assembled values by its backward error and the matrix refactorized if the check fails.
   void solve(std::span<double> x);
+  /// The largest backward error a solve with an updated factor may have (1e-10; tests set 0
+  /// to force the refactorization).
+  void set_trusted_backward_error(double largest) { trusted_backward_error_ = largest; }
 
   const StiffnessLayout& layout() const { return layout_; }
   std::int32_t num_equations() const { return num_equations_; }
@@ -106,6 +104,10 @@ class LinearSystem {
   /// the factorized values themselves, with them the base the springs join.
   std::span<double> base() { return contact_springs_ ? base_values_ : values_; }
   void factorize();
+  /// Folds the damage change since values_damage_ (elements `changed_`) into the factor and
+  /// the values; false when an update is not expected to pay or failed (the factor is then
+  /// stale, the values untouched).
+  bool fold_damage_change(const Model& model, std::span<const std::int32_t> equation);
 
   StageTimers& timers_;
   bool factor_updates_;
@@ -118,12 +120,17 @@ class LinearSystem {
   std::vector<double> values_;           // K_eff as factorized, pattern order
   std::vector<double> base_values_;      // K + c M + restraint, without contact springs
   std::optional<double> assembled_for_;  // the mass coefficient the values hold; none: stale
-  bool values_folded_ = false;           // the values carry folded modulus changes
-  // The contact springs whose sum with the current base values the factor is, when it is.
+  std::vector<double> values_damage_;    // the element damage the values hold
+  std::vector<std::int32_t> changed_;    // elements whose damage differs from values_damage_
+  // The factor is that of the base values (without contact springs: of values_)...
+  bool factor_holds_base_ = false;
+  // ... plus these contact springs, when they are known.
   std::optional<SlotMatrices> factored_springs_;
   LowRankTerms moduli_added_, moduli_removed_;
   std::vector<double> check_rhs_, check_residual_;  // the updated-factor check's work arrays
   LinearSystemStats stats_;
+  // docs/benchmarks.md, "Damage passes folded into the factor", for the threshold's table.
+  double trusted_backward_error_ = 1e-10;
   bool analysis_pending_ = false;  // analysis_task_ holds a task no one waited for
   // Declared last, so destroyed first: a task still running reads the members above.
   tbb::task_group analysis_task_;
