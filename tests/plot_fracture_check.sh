@@ -31,6 +31,7 @@ draws s3.png fracture "$run" --color s3 --step 0
 draws stages.png fracture "$run" --color damage --time 0 1e9 --dpi 60
 draws first.png fracture "$run" --step 0
 draws time.png fracture "$run" --time 1e9
+draws event.png fracture "$run" --event first_damage
 draws curve.png curve "$run" --x time --y "$col" --y-scale -1e-3 --mark-peak
 grep -q "^peak" "$tmp/out" || fail "curve --mark-peak printed no peak"
 
@@ -45,6 +46,7 @@ refused() {
 refused fracture "$tmp/no-such-run"
 refused fracture "$run" --step 999999999
 refused fracture "$run" --step 0 999999999
+refused fracture "$run" --event no_such_event
 refused curve "$run" --y no.such.column
 refused curve "$tmp/no-such-run" --y "$col"
 echo "plot fracture/curve: all checks passed"
