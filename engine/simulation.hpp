@@ -133,6 +133,11 @@ class Simulation {
   /// (and then, given a `control`, the step is rejected there).
   bool open_close_iteration(long step, int retries, const InertiaTerms& inertia,
                             StepControl* control);
+  /// After a solve that turned elements past kFrameTolerance from K's frames: the frames
+  /// follow and Newton steps correct the iterate from where it is (steps without inertia;
+  /// false when such an open-close iteration did not settle).
+  bool follow_turned_frames(long step, int retries, const InertiaTerms& inertia,
+                            StepControl& control);
   /// One solve of the open-close iteration: contact springs, factorization (unless
   /// `factor_current`), solve; fills the trial's du.
   void solve_iteration(long step, const InertiaTerms& inertia, bool factor_current);

@@ -67,6 +67,13 @@ std::unique_ptr<LinearSystem> fresh_system(StageTimers& timers, const Plate& pla
   return system;
 }
 
+/// The plate's solution by a freshly assembled and factorized system.
+std::vector<double> fresh_solution(Plate& plate) {
+  StageTimers timers;
+  auto system = fresh_system(timers, plate, false);
+  return solve(*system, plate);
+}
+
 /// max |x - y| / max |y|.
 double relative_difference(const std::vector<double>& x, const std::vector<double>& y) {
   double difference = 0.0, largest = 0.0;
@@ -90,11 +97,9 @@ TEST(LinearSystem, DamageOfAFewElementsIsFoldedIntoTheFactorAndSolvesAsAFreshFac
   EXPECT_EQ(system->stats().folded_damage_passes, 1);
   EXPECT_EQ(system->solver_stats().factorizations, 1);  // updated, not refactorized
   EXPECT_EQ(system->stats().untrusted_updated_solves, 0);
-  StageTimers fresh_timers;
-  auto reference = fresh_system(fresh_timers, plate, false);
   // An updated factor's answer agrees with a fresh one to its checked backward error (the
   // plate's condition number ~1e3 turns 1e-13 of backward error into ~1e-10 of answer).
-  EXPECT_LT(relative_difference(damaged, solve(*reference, plate)), 1e-9);
+  EXPECT_LT(relative_difference(damaged, fresh_solution(plate)), 1e-9);
   EXPECT_GT(relative_difference(damaged, undamaged), 1e-3);  // the change is not round-off
 
   // An attempt taken back: the damage returns to where it was, and so does the answer.
@@ -123,9 +128,7 @@ TEST(LinearSystem, SolveCheckThatFailsRefactorizesAndSolvesAfresh) {
   EXPECT_EQ(system->stats().folded_damage_passes, 1);
   EXPECT_EQ(system->stats().untrusted_updated_solves, 1);
   EXPECT_EQ(system->solver_stats().factorizations, 2);
-  StageTimers fresh_timers;
-  auto reference = fresh_system(fresh_timers, plate, false);
-  EXPECT_LT(relative_difference(x, solve(*reference, plate)), 1e-12);
+  EXPECT_LT(relative_difference(x, fresh_solution(plate)), 1e-12);
   // The refactorized factor is fresh: the next solve is not checked, so not refused.
   solve(*system, plate);
   EXPECT_EQ(system->stats().untrusted_updated_solves, 1);
@@ -153,9 +156,7 @@ TEST(LinearSystem, ChangeOfManyElementsIsAssembledAfreshNotFolded) {
   const std::vector<double> x = solve(*system, plate);
   EXPECT_EQ(system->stats().folded_damage_passes, 0);
   EXPECT_EQ(system->solver_stats().factorizations, 2);
-  StageTimers fresh_timers;
-  auto reference = fresh_system(fresh_timers, plate, false);
-  EXPECT_EQ(x, solve(*reference, plate));  // assembled afresh: bitwise a fresh system
+  EXPECT_EQ(x, fresh_solution(plate));  // assembled afresh: bitwise a fresh system
 }
 
 }  // namespace

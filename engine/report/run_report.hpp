@@ -30,6 +30,7 @@ struct RunStats {
   long detached_elements = 0;         // elements that became blocks of their own
   long parts_cut_loose = 0;           // damage passes after which the fragment restraint grew
   long restraint_relaxations = 0;     // solves that re-anchored the restraint (relax_restraint)
+  long frame_corrections = 0;  // Newton solves after elements turned past K's frames in a solve
 };
 
 /// Where a quasi-static run went on with inertia (fracture.snap_back = "dynamic").

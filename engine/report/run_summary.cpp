@@ -38,6 +38,7 @@ void write_counters(const RunStats& c, nlohmann::json& s) {
   s["detached_elements"] = c.detached_elements;
   s["parts_cut_loose"] = c.parts_cut_loose;
   s["restraint_relaxations"] = c.restraint_relaxations;
+  s["frame_corrections"] = c.frame_corrections;
 }
 
 /// summary.json's "timers": the step stages, the set-up, and with `setup` the whole process.
