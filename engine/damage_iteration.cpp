@@ -148,15 +148,15 @@ void Simulation::prepare_next_pass(double mass_coefficient) {
   sum_element_forces(model_, coloring_, trial_.trial_element_force, trial_.f_int);
 }
 
-bool Simulation::hold_parts_cut_loose() {
-  if (analysis_ == Analysis::dynamic) return false;  // inertia holds them
+void Simulation::hold_parts_cut_loose() {
+  if (analysis_ == Analysis::dynamic) return;  // inertia holds them
   const bool broke = std::any_of(
       trial_.changed_elements.begin(), trial_.changed_elements.end(),
       [&](std::int32_t e) { return trial_.damage_before[e] < 1.0 && model_.damage[e] >= 1.0; });
-  if (!broke) return false;
+  if (!broke) return;
   FragmentRestraint held(model_, bc_, scene_.fracture.fragment_stiffness,
                          scene_.fracture.loose_part_support);
-  if (held.same_springs(fragments_)) return false;
+  if (held.same_springs(fragments_)) return;
   held.anchor_new_springs(fragments_, trial_.du);
   fragments_ = std::move(held);
   ++report_.counters.parts_cut_loose;
@@ -167,7 +167,6 @@ bool Simulation::hold_parts_cut_loose() {
     trial_increment[d] = trial_.u_trial[d] - model_.u[d];
   fragments_.forces(trial_increment, trial_.restraint_force);
   system_->invalidate();  // K takes the new springs
-  return true;
 }
 
 void Simulation::relax_restraint(long step, int retries, const InertiaTerms& inertia,

@@ -177,8 +177,8 @@ class Simulation {
   void prepare_next_pass(double mass_coefficient);
   /// Without inertia, after a damage pass in which elements broke (w reached 1): a part that
   /// only they joined to what holds it is loose until the step ends and detaches them, so the
-  /// fragment restraint is rebuilt over the parts. True when the springs changed.
-  bool hold_parts_cut_loose();
+  /// fragment restraint is rebuilt over the parts.
+  void hold_parts_cut_loose();
   /// Without inertia, after a solve that settles the committed state's imbalance or a damage
   /// pass: when the fragment restraint's springs hold more than fracture.restraint_relaxation
   /// of the stored energy, they are re-anchored where the solve left the parts and the open-close
