@@ -115,7 +115,7 @@ void Simulation::record_committed_state(bool detached) {
 }
 
 bool Simulation::detach_fractured_elements() {
-  ScopedTimer timer(report_.timers.damage);
+  ScopedTimer timer(report_.timers.detachment);
   std::vector<double> threshold(static_cast<std::size_t>(model_.num_elements()));
   for (std::int32_t e = 0; e < model_.num_elements(); ++e)
     threshold[e] = damage_->detach_threshold(model_, e);

@@ -28,7 +28,8 @@ constexpr int kMaxRestraintRelaxations = 30;
 }  // namespace
 
 void Simulation::strain_at_result() {
-  ScopedTimer timer(report_.timers.damage);
+  // The internal-force pass, as at a step's start: assembly's work, not the damage laws'.
+  ScopedTimer timer(report_.timers.assembly);
   const std::size_t num_dofs = model_.X.size();
   for (std::size_t d = 0; d < num_dofs; ++d) trial_.positions[d] = model_.u[d] + trial_.du[d];
   compute_internal_force(model_, coloring_, trial_.positions, model_.strain, model_.stress,
@@ -39,6 +40,7 @@ DamageChange Simulation::evaluate_damage(bool start_onsets) {
   ScopedTimer timer(report_.timers.damage);
   trial_.damage_before = model_.damage;
   const DamageChange change = damage_->evaluate(model_, scene_.fracture.damage_band, start_onsets);
+  ++report_.counters.damage_stage_passes;
   if (change.grown > 0) {
     trial_.damage_changed = true;
     // Without carried velocity the pass drops the moduli at its own strain and re-solves from
@@ -55,6 +57,12 @@ DamageChange Simulation::evaluate_damage(bool start_onsets) {
     note_damage_events();
   }
   return change;
+}
+
+OnsetSearch Simulation::locate_onset(double target) {
+  ScopedTimer timer(report_.timers.damage);
+  ++report_.counters.damage_stage_passes;
+  return damage_->locate_onset(model_, committed_.strain, committed_.stress, target);
 }
 
 void Simulation::note_damage_events() {

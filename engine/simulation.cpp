@@ -411,8 +411,7 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
     // Softening of elements already damaged only loads the others further: an onset that the
     // first solve passes already is cut back to at once, before any growth is settled.
     if (pass == 1 && locate_onsets && may_cut) {
-      const OnsetSearch onset = damage_->locate_onset(model_, committed_.strain, committed_.stress,
-                                                      onset_target(scene_.fracture));
+      const OnsetSearch onset = locate_onset(onset_target(scene_.fracture));
       if (onset.largest > onset_tolerance(scene_.fracture) && onset.fraction) {
         trial_.onset_fraction = *onset.fraction;
         trial_.onset_largest = onset.largest;
@@ -434,8 +433,7 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
     const bool settle_growth = count_snap_back && scene_.fracture.growth_tolerance > 0.0 &&
                                change.largest_growth > scene_.fracture.growth_tolerance;
     if (locate_onsets && !settle_growth) {
-      const OnsetSearch onset = damage_->locate_onset(model_, committed_.strain, committed_.stress,
-                                                      onset_target(scene_.fracture));
+      const OnsetSearch onset = locate_onset(onset_target(scene_.fracture));
       if (onset.largest > onset_tolerance(scene_.fracture) && onset.fraction && may_cut) {
         trial_.onset_fraction = *onset.fraction;
         trial_.onset_largest = onset.largest;

@@ -32,6 +32,7 @@ class LinearSystem;
 class StepControl;
 struct SolverStats;
 struct DamageChange;
+struct OnsetSearch;
 struct RunResult;  // engine/report/run_result.hpp
 struct InertiaTerms;
 
@@ -156,6 +157,9 @@ class Simulation {
   /// Damage laws at the strain and stress strain_at_result() left; moduli marked stale when
   /// damage grew. Without `start_onsets` only elements already damaged change.
   DamageChange evaluate_damage(bool start_onsets);
+  /// Where along the attempt, from the committed state to strain_at_result()'s, the first
+  /// undamaged element's onset ratio reaches `target` (DamageStage::locate_onset).
+  OnsetSearch locate_onset(double target);
   /// Adds to the attempt the run events its last damage pass brought (first damage, first
   /// separation), each with a copy of the model at the pass.
   void note_damage_events();

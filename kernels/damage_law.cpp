@@ -50,16 +50,25 @@ double compressive_strength(double cohesion, double phi) {
   return 2.0 * cohesion * std::cos(phi) / (1.0 - std::sin(phi));
 }
 
-void compressive_principal_stresses(const double sig[3], double poisson, PlaneKind plane,
-                                    double c[3]) {
-  double s1, s2;
-  principal_values(sig[0], sig[1], sig[2], s1, s2);
+namespace {
+/// The compressive principal stresses c[0] >= c[1] >= c[2] from the in-plane principal
+/// stresses s1 >= s2 (tension positive) and the out-of-plane stress of `sig`.
+void order_compressive(double s1, double s2, const double sig[3], double poisson, PlaneKind plane,
+                       double c[3]) {
   // Compression positive reverses the order: the most tensile stress becomes c3.
   c[0] = -s2;
   c[1] = -s1;
   c[2] = -out_of_plane_stress(sig, poisson, plane);
   if (c[2] > c[1]) std::swap(c[1], c[2]);
   if (c[1] > c[0]) std::swap(c[0], c[1]);
+}
+}  // namespace
+
+void compressive_principal_stresses(const double sig[3], double poisson, PlaneKind plane,
+                                    double c[3]) {
+  double s1, s2;
+  principal_values(sig[0], sig[1], sig[2], s1, s2);
+  order_compressive(s1, s2, sig, poisson, plane, c);
 }
 
 bool mohr_coulomb_onset(double c1, double c3, double fc0, double k) {
@@ -104,19 +113,17 @@ double onset_ratio(const double eps[3], const double sig[3], const DamageParams&
                    double w_old) {
   const double scale = 1.0 / std::max(1.0 - w_old, p.floor);
   const double se[3] = {sig[0] * scale, sig[1] * scale, sig[2] * scale};
+  // One set of principal stresses serves both laws (this runs on every element and pass).
+  double s1, s2;
+  principal_values(se[0], se[1], se[2], s1, s2);
   double ratio = 0.0;
-  if (p.ft0 > 0.0) {
-    if (p.onset == TensionOnset::stress) {
-      double s1, s2;
-      principal_values(se[0], se[1], se[2], s1, s2);
-      ratio = s1 / p.ft0;
-    } else {
-      ratio = equivalent_tensile_strain(eps, p.poisson, plane) / (p.ft0 / p.young);
-    }
-  }
+  if (p.ft0 > 0.0)
+    ratio = p.onset == TensionOnset::stress
+                ? s1 / p.ft0
+                : equivalent_tensile_strain(eps, p.poisson, plane) / (p.ft0 / p.young);
   if (p.fc0 > 0.0) {
     double c[3];
-    compressive_principal_stresses(se, p.poisson, plane, c);
+    order_compressive(s1, s2, se, p.poisson, plane, c);
     ratio = std::max(ratio, (c[0] - p.mohr_coulomb * c[2]) / p.fc0);
   }
   return ratio;
@@ -144,7 +151,7 @@ DamageUpdate evaluate_damage(const double eps[3], const double sig[3], const Dam
   }
 
   double c[3];
-  compressive_principal_stresses(se, p.poisson, plane, c);
+  order_compressive(s1, s2, se, p.poisson, plane, c);
   if (p.fc0 > 0.0 && mohr_coulomb_onset(c[0], c[2], p.fc0, p.mohr_coulomb)) {
     const double eps_c0 =
         compressive_threshold_strain(c, p.fc0, p.mohr_coulomb, p.young, p.poisson);

@@ -63,7 +63,8 @@ TEST(CommandLine, RunWritesEveryPromisedOutput) {
   EXPECT_EQ(summary["elements"], 128);
   EXPECT_EQ(summary["solver"]["analyses"], 1);
   EXPECT_EQ(summary["solver"]["factorizations"], 1);  // static: K factorized once, reused
-  for (const char* timer : {"assembly", "factorization", "solve", "contact", "damage", "output"})
+  for (const char* timer :
+       {"assembly", "factorization", "solve", "contact", "damage", "detachment", "output"})
     EXPECT_TRUE(summary["timers"].contains(timer)) << timer;
   EXPECT_TRUE(summary["peaks"].contains("tip.uy"));
 
@@ -212,8 +213,8 @@ TEST(CommandLine, SummaryTimersAccountForTheWholeProcess) {
     named += t[key].get<double>();
   }
   double stages = t["step_other"].get<double>();
-  for (const char* key :
-       {"assembly", "factorization", "solve", "contact", "damage", "output", "layout", "analysis"})
+  for (const char* key : {"assembly", "factorization", "solve", "contact", "damage", "detachment",
+                          "output", "layout", "analysis"})
     stages += t[key].get<double>();
   // The step stages are exclusive (a nested timer pauses its outer one): they add up to the
   // run's wall time exactly, step_other being the rest.

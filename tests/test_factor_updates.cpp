@@ -72,6 +72,12 @@ TEST(FactorUpdates, UniaxialCompressionDamagesAsWithRefactorization) {
   EXPECT_GT(summary.at("folded_damage_passes").get<long>(), 0);
   EXPECT_LT(summary.at("solver").at("factorizations").get<long>(),
             summary.at("steps").get<long>() + summary.at("damage_iterations").get<long>());
+  // Every pass of a committed step evaluates the laws once (the onset searches come on top),
+  // and the damage stage's timer is its own: not the strain pass, not the detachment.
+  EXPECT_GE(summary.at("damage_stage_passes").get<long>(),
+            summary.at("steps").get<long>() + summary.at("damage_iterations").get<long>());
+  EXPECT_GT(summary.at("timers").at("damage").get<double>(), 0.0);
+  EXPECT_GT(summary.at("timers").at("detachment").get<double>(), 0.0);
 }
 
 }  // namespace

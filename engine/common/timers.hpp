@@ -11,8 +11,10 @@ struct StageTimers {
   double assembly = 0, factorization = 0, solve = 0, contact = 0, damage = 0, output = 0;
   double layout = 0;    // sparsity pattern and scatter map, when contacts or blocks change
   double analysis = 0;  // CHOLMOD's symbolic analysis (ordering, supernodes) of a new pattern
+  double detachment = 0;  // damaged elements made fragments, and the stages rebuilt on them
   double sum() const {
-    return assembly + factorization + solve + contact + damage + output + layout + analysis;
+    return assembly + factorization + solve + contact + damage + detachment + output + layout +
+           analysis;
   }
 };
 

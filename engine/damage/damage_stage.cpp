@@ -146,23 +146,26 @@ OnsetSearch DamageStage::locate_onset(const Model& model, std::span<const double
 DamageChange DamageStage::evaluate(Model& model, double band, bool start_onsets) {
   using Range = tbb::blocked_range<std::int32_t>;
   const std::int32_t num_elements = model.num_elements();
-  ratio_.assign(static_cast<std::size_t>(num_elements), 0.0);
+  // The onset ratios order the onsets a pass starts; a pass that starts none reads no ratio.
+  if (start_onsets) ratio_.assign(static_cast<std::size_t>(num_elements), 0.0);
   // The largest onset ratio among undamaged elements: a max does not depend on the order.
-  const double largest = tbb::parallel_reduce(
-      Range(0, num_elements, 1024), 0.0,
-      [&](const Range& range, double top) {
-        for (std::int32_t e = range.begin(); e != range.end(); ++e) {
-          if (!damageable_[static_cast<std::size_t>(model.element_material[e])] ||
-              model.damage[e] > 0.0)
-            continue;
-          const auto i = 3 * static_cast<std::size_t>(e);
-          ratio_[e] = kernels::onset_ratio(&model.strain[i], &model.stress[i],
-                                           element_params(model, e), plane_, 0.0);
-          top = std::max(top, ratio_[e]);
-        }
-        return top;
-      },
-      [](double a, double b) { return std::max(a, b); });
+  double largest = 0.0;
+  if (start_onsets)
+    largest = tbb::parallel_reduce(
+        Range(0, num_elements, 1024), 0.0,
+        [&](const Range& range, double top) {
+          for (std::int32_t e = range.begin(); e != range.end(); ++e) {
+            if (!damageable_[static_cast<std::size_t>(model.element_material[e])] ||
+                model.damage[e] > 0.0)
+              continue;
+            const auto i = 3 * static_cast<std::size_t>(e);
+            ratio_[e] = kernels::onset_ratio(&model.strain[i], &model.stress[i],
+                                             element_params(model, e), plane_, 0.0);
+            top = std::max(top, ratio_[e]);
+          }
+          return top;
+        },
+        [](double a, double b) { return std::max(a, b); });
   const double event = largest / (1.0 + band);
   return tbb::parallel_reduce(
       Range(0, num_elements, 1024), DamageChange{},

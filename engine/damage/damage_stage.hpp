@@ -76,6 +76,7 @@ class DamageStage {
   std::vector<double> fracture_energy_;        // per material: G_f, 0 = no crack band
   kernels::PlaneKind plane_;
   std::vector<double> ratio_;  // per element: onset ratio of an undamaged element, else 0
+                               // (as the last pass that started onsets found them)
   SeparationWatch separation_;
 };
 

@@ -26,6 +26,8 @@ struct RunStats {
   long open_close_relaxed_steps = 0;  // steps that settled only with a widened tolerance
   double largest_relaxation = 1.0;    // the widest tolerance factor such a step needed
   long damage_iterations = 0;         // re-solves after a damage event
+  long damage_stage_passes = 0;       // passes of the damage stage over every element (law
+                                      // evaluations and onset searches)
   long damage_limit_hits = 0;         // steps that ran out of damage passes
   long detached_elements = 0;         // elements that became blocks of their own
   long parts_cut_loose = 0;           // damage passes after which the fragment restraint grew

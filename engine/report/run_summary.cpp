@@ -35,6 +35,7 @@ void write_counters(const RunStats& c, nlohmann::json& s) {
   s["open_close_largest_relaxation"] = c.largest_relaxation;
   s["damage_iterations"] = c.damage_iterations;
   s["damage_iteration_limit_hits"] = c.damage_limit_hits;
+  s["damage_stage_passes"] = c.damage_stage_passes;
   s["detached_elements"] = c.detached_elements;
   s["parts_cut_loose"] = c.parts_cut_loose;
   s["restraint_relaxations"] = c.restraint_relaxations;
@@ -46,18 +47,14 @@ nlohmann::json timers(const RunReport& report, double wall_seconds,
                       const std::optional<SetupReport>& setup) {
   const StageTimers& stage = report.timers;
   const SetupTimers& set_up = report.setup_timers;
-  nlohmann::json t = {{"assembly", stage.assembly},
-                      {"factorization", stage.factorization},
-                      {"solve", stage.solve},
-                      {"contact", stage.contact},
-                      {"damage", stage.damage},
-                      {"output", stage.output},
-                      {"layout", stage.layout},
-                      {"analysis", stage.analysis},
-                      {"step_other", std::max(0.0, wall_seconds - stage.sum())},
-                      {"setup_layout", set_up.layout},
-                      {"setup_analysis", set_up.analysis},
-                      {"setup", set_up.other}};
+  nlohmann::json t = {
+      {"assembly", stage.assembly},    {"factorization", stage.factorization},
+      {"solve", stage.solve},          {"contact", stage.contact},
+      {"damage", stage.damage},        {"detachment", stage.detachment},
+      {"output", stage.output},        {"layout", stage.layout},
+      {"analysis", stage.analysis},    {"step_other", std::max(0.0, wall_seconds - stage.sum())},
+      {"setup_layout", set_up.layout}, {"setup_analysis", set_up.analysis},
+      {"setup", set_up.other}};
   if (!setup) return t;
   double named = setup->scene + setup->meshing + setup->model + set_up.sum() + wall_seconds;
   if (setup->startup) {
