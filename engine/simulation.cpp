@@ -201,7 +201,7 @@ RunResult Simulation::run(const RunOptions& options) {
       for (int retries = 0;;) {
         const Attempt attempt =
             attempt_step(step, retries, t, dt, load_factor(analysis_, t + dt, end_time), control,
-                         cuts.may_cut(), onset_damage_next);
+                         cuts, onset_damage_next);
         if (attempt == Attempt::accepted) {
           if (commit_checked_step(step, dt, balance_before, control)) break;
         } else if (attempt == Attempt::cut_at_onset) {
@@ -316,8 +316,8 @@ double Simulation::inertia_step(double dt, const StepControl& control) const {
 }
 
 Simulation::Attempt Simulation::attempt_step(long step, int retries, double time, double dt,
-                                             double load_factor, StepControl& control, bool may_cut,
-                                             bool onset_at_start) {
+                                             double load_factor, StepControl& control,
+                                             const OnsetCuts& cuts, bool onset_at_start) {
   const std::size_t num_dofs = model_.X.size();
   begin_attempt(time + dt, load_factor);
   if (on_attempt_) on_attempt_(AttemptReport{step, retries, dt}, model_);
@@ -379,8 +379,9 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
   // a displacement that only the step's length chose.
   // While onsets are located, a pass grows the damage of elements already damaged but starts
   // none; once that growth has settled, the onsets are sought in the settled state.
-  const bool locate_onsets =
-      scene_.fracture.locate_onsets && analysis_ != Analysis::dynamic && dt > 0.0;
+  const bool locate_onsets = scene_.fracture.locate_onsets && analysis_ != Analysis::dynamic &&
+                             (dt > 0.0 || cuts.locates_at_no_length());
+  const bool may_cut = cuts.may_cut();
   // The damage of an onset the last step located runs where it was located: from the
   // committed state, before any solve (which would first settle the growth that step left).
   const bool located_onset_damage = damage_ && onset_at_start;

@@ -30,6 +30,7 @@ class ContactStage;
 class DamageStage;
 class LinearSystem;
 class StepControl;
+class OnsetCuts;
 struct SolverStats;
 struct DamageChange;
 struct OnsetSearch;
@@ -110,12 +111,13 @@ class Simulation {
 
   // The attempt (simulation.cpp).
   /// One step attempt of length dt from the committed state at `time` (`retries` earlier
-  /// attempts of this step were rejected). `may_cut`: an attempt that passes an onset by more
-  /// than its tolerance is cut back. `onset_at_start`: the last step located an onset, whose
-  /// damage this attempt (of no length) runs before any solve. A step of no length without it
-  /// settles the last step's damage growth and runs the onsets that settling passes.
+  /// attempts of this step were rejected). `cuts`: whether an attempt that passes an onset by
+  /// more than its tolerance is cut back, and whether one of no length locates its onsets.
+  /// `onset_at_start`: the last step located an onset, whose damage this attempt (of no length)
+  /// runs before any solve. A step of no length without either settles the last step's damage
+  /// growth and runs the onsets that settling passes.
   Attempt attempt_step(long step, int retries, double time, double dt, double load_factor,
-                       StepControl& control, bool may_cut, bool onset_at_start);
+                       StepControl& control, const OnsetCuts& cuts, bool onset_at_start);
   /// The step length whose inertia the system carries: dt, but in a quasi-static analysis,
   /// whose mass term only regularises (the velocity resets each step), the step control's dt
   /// up to the scene's: cutting a step at an onset, or running an onset's damage in a step of

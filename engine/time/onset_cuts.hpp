@@ -24,8 +24,17 @@ class OnsetCuts {
   /// two (the growth bends the path, which the straight paths miss). When that line stays
   /// above the target at no length, the settling alone passes the onset, not the load: the
   /// step has no length, and its damage passes settle and run the onset at the load it has
-  /// (or, where it may not stand, a last tenth of it, not cut again).
+  /// (or, where it may not stand, a last tenth of it, not cut again). Two attempts cut at
+  /// their first solve draw the same line: where it stays above the target at no length, the
+  /// first solve's settling of the imbalance the step started with (the last step's final
+  /// growth, a detachment's split nodes) passes the onset, and the step has no length but
+  /// locates the onset as a step with length does (locates_at_no_length).
   double next(double dt, double fraction, double largest, bool settled);
+
+  /// Whether the step, given no length because its first solve's settling passes an onset,
+  /// settles its damage growth and then locates that onset (the next step runs it), as a step
+  /// with length does; otherwise a step of no length starts its onsets with its first pass.
+  bool locates_at_no_length() const { return locates_at_no_length_; }
 
  private:
   static constexpr int kMostCuts = 8;
@@ -33,7 +42,10 @@ class OnsetCuts {
   double target_;
   bool may_stand_;
   int cuts_ = 0;
-  std::optional<std::pair<double, double>> settled_;  // (length, largest ratio) of the last
+  bool locates_at_no_length_ = false;
+  // (length, largest ratio) of the last attempt cut after its first solve, and after its
+  // growth settled.
+  std::optional<std::pair<double, double>> first_solve_, settled_;
 };
 
 }  // namespace rockdd
