@@ -7,7 +7,9 @@
 2. `run` of three bench_kernels benchmarks (5 repetitions, 0.02 s) twice into a fresh store.
 3. `compare` of the run with a copy of itself: exit 0, every verdict "same" with p = 1;
    with the rerun: exit 0 and nothing slower (at a 50 % threshold, because the machine that
-   runs CTest is shared and an unchanged rerun may honestly move by more than 5 %).
+   runs CTest is shared and an unchanged rerun may honestly move by more than 5 %; a rerun
+   flagged slower is measured again, up to three runs, since a burst of other work can slow
+   a whole run: a CI run once had a median 2.35x its baseline's).
 4. Copies of the first run with doctored times: x1.5 (or more) on two benchmarks must give
    exit 1 and exactly those two "slower"; x0.6 (or less) on a third must give exit 0 and
    exactly it "faster".
@@ -242,10 +244,24 @@ def main():
     check(rc == 0 and v and set(v.values()) == {"same"},
           f"a run against its copy: exit 0, all same (exit {rc}, {v})")
 
-    rc, out, v = compare(args, first, os.path.join(here, "rerun"), "--threshold", "50")
-    print(out, end="")
+    # A burst of other work on the shared machine can slow every repetition of a run (one CI
+    # run: a median 2.35x its rerun's, load average 2.3 on 2 cores). As a user would, measure
+    # again: the check fails only when three reruns in a row are flagged, which a tool that
+    # compares the wrong samples or misreads units does every time.
+    for attempt in range(3):
+        name = "rerun" if attempt == 0 else f"rerun{attempt + 1}"
+        if attempt:
+            rc, out = tool(args, "run", "--build", args.build, "--bench", "bench_kernels",
+                           "--filter", FILTER, "--repetitions", "5", "--min-time", "0.02",
+                           "--store", args.store, "--name", name)
+            print(out, end="")
+        rc, out, v = compare(args, first, os.path.join(here, name), "--threshold", "50")
+        print(out, end="")
+        if rc == 0 and len(v) == 3 and "slower" not in v.values():
+            break
+        print(f"note  {name} was flagged; the machine may have been busy: measuring again")
     check(rc == 0 and len(v) == 3 and "slower" not in v.values(),
-          f"an unchanged rerun: exit 0, nothing slower (exit {rc}, {v})")
+          f"an unchanged rerun: exit 0, nothing slower (exit {rc}, {v}, {attempt + 1} tries)")
 
     widest = max(
         max(times) / min(times) for times in (
