@@ -115,7 +115,8 @@ const Case& case_for(const benchmark::State& state) {
   c->detached = c->damaged;
   std::vector<std::uint8_t> detached;
   c->detachment = detach_damaged_elements(c->detached, c->threshold, detached);
-  c->before = std::make_unique<ContactStage>(c->scene, undamaged, c->scene.analysis);
+  c->before = std::make_unique<ContactStage>(c->scene, undamaged, c->scene.analysis,
+                                             c->scene.time.integrator);
   cached = std::move(c);
   cached_key = key;
   return *cached;
@@ -162,7 +163,7 @@ void BM_RebuildAfterDetachment(benchmark::State& state) {
     t[2] = Clock::now();
     const ElementColoring coloring = color_elements(model.conn, model.num_nodes());
     t[3] = Clock::now();
-    ContactStage contact(c.scene, model, c.scene.analysis);
+    ContactStage contact(c.scene, model, c.scene.analysis, c.scene.time.integrator);
     std::vector<Contact> committed = c.before->contacts();
     contact.carry_contacts_from(*c.before, committed);
     t[4] = Clock::now();

@@ -53,6 +53,7 @@ void Simulation::commit_step(double dt, const StepControl& control) {
     // springs' anchors: after it they would count that slip twice.
     std::fill(trial_.f_contact.begin(), trial_.f_contact.end(), 0.0);
     contact_->add_spring_forces(trial_.positions, trial_.f_contact);
+    if (contact_->energy_consistent()) balance_acceleration_at_end_contact_forces();
     const double spring_energy_before = committed_.contact_spring_energy;
     const double friction_before = energy.friction;
     committed_.contact_spring_energy = contact_->commit(trial_.positions, energy.friction);
@@ -154,7 +155,7 @@ bool Simulation::detach_fractured_elements() {
     fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness,
                                    scene_.fracture.loose_part_support);
   if (analysis_ != Analysis::dynamic && corotational_) turn_loose_block_frames();
-  auto contact = std::make_unique<ContactStage>(scene_, model_, analysis_);
+  auto contact = std::make_unique<ContactStage>(scene_, model_, analysis_, integrator_);
   if (contact_) contact->carry_contacts_from(*contact_, committed_.contacts);
   contact_ = std::move(contact);
   rebuild_layout();
@@ -192,9 +193,28 @@ void Simulation::recompute_committed_forces() {
   }
 }
 
+void Simulation::balance_acceleration_at_end_contact_forces() {
+  // Newmark's update left an acceleration that balances the contact forces the solve took,
+  // which stand for the sum of the step's start and end forces (mean normal forces, friction
+  // at its end); the next step must start from one that balances the springs' end forces as
+  // they are. The difference is that sum less the two end forces.
+  const std::size_t num_dofs = model_.X.size();
+  std::vector<double>& sum = trial_.contact_force_sum;
+  std::fill(sum.begin(), sum.end(), 0.0);
+  contact_->add_solve_forces(trial_.positions, sum);
+  for (std::size_t d = 0; d < num_dofs; ++d)
+    if (!bc_.prescribed[d])
+      committed_.acceleration[d] +=
+          (sum[d] - committed_.contact_force[d] - trial_.f_contact[d]) / model_.node_mass[d / 2];
+  committed_.contact_force = trial_.f_contact;
+}
+
 void Simulation::balance_acceleration() {
   // Starting from a = 0 instead would misplace every later velocity by the unbalanced force
   // (g dt / 2 for a body under gravity at rest).
+  // With Newmark's energy-consistent contacts the next step's solve takes the place of the
+  // contact forces the acceleration holds: it must know them.
+  if (contact_ && contact_->energy_consistent()) committed_.contact_force = trial_.f_contact;
   for (std::size_t d = 0; d < model_.X.size(); ++d)
     committed_.acceleration[d] =
         bc_.prescribed[d] || analysis_ != Analysis::dynamic
@@ -225,7 +245,7 @@ void Simulation::follow_cascade_with_inertia(long step, double time, double end_
   // Inertia holds loose blocks now; contacts lose the sliding springs of steps without it.
   fragments_ = committed_.restraint = FragmentRestraint();
   std::fill(trial_.restraint_force.begin(), trial_.restraint_force.end(), 0.0);
-  if (contact_) contact_->set_analysis(analysis_);  // same contacts, same pattern
+  if (contact_) contact_->set_analysis(analysis_, integrator_);  // same contacts, same pattern
   system_->invalidate();
   // The last pass's modulus drop left the committed state out of balance.
   balance_acceleration();

@@ -95,7 +95,8 @@ Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> me
     ScopedTimer layout_timer(report_.timers.layout);
     coloring_ = color_elements(model_.conn, model_.num_nodes());
   }
-  if (!scene_.joints.empty()) contact_ = std::make_unique<ContactStage>(scene_, model_, analysis_);
+  if (!scene_.joints.empty())
+    contact_ = std::make_unique<ContactStage>(scene_, model_, analysis_, integrator_);
   if (!model_.tensile_strength.empty()) damage_ = std::make_unique<DamageStage>(scene_, model_);
   watch_disintegration_ = damage_ && analysis_ == Analysis::quasi_static &&
                           fracturing_block_spread(model_).largest_share >= kFragmentShare;
@@ -591,7 +592,12 @@ void Simulation::solve_iteration(long step, const InertiaTerms& inertia, bool fa
       std::fill(trial_.f_contact.begin(), trial_.f_contact.end(), 0.0);
       for (std::size_t d = 0; d < num_dofs; ++d)
         trial_.positions[d] = model_.X[d] + trial_.u_trial[d];
-      contact_->add_spring_forces(trial_.positions, trial_.f_contact);
+      contact_->add_solve_forces(trial_.positions, trial_.f_contact);
+      // With Newmark the solve takes the sum of the step's start and end contact forces, of
+      // which the committed acceleration already holds the start's.
+      if (contact_->energy_consistent())
+        for (std::size_t d = 0; d < num_dofs; ++d)
+          trial_.f_contact[d] -= committed_.contact_force[d];
     }
     system_->add_contact_springs(contact_->spring_matrices(model_.num_elements()), factor_current);
   }

@@ -217,6 +217,10 @@ class Simulation {
   /// a = M^-1 (f_ext - f_int - f_contact) on the free dofs (0 on prescribed ones, and without
   /// inertia).
   void balance_acceleration();
+  /// With Newmark and contacts, at the commit: the acceleration the update left balances the
+  /// contact forces the solve took (ContactStage::add_solve_forces); it is set to balance the
+  /// springs' end forces instead, which committed_.contact_force keeps for the next step.
+  void balance_acceleration_at_end_contact_forces();
   /// fracture.snap_back = "dynamic": after the step whose damage cascade called for inertia,
   /// the run goes on as a dynamic analysis (Newmark, snap_back_time_step) from the committed
   /// state, which the last damage pass left out of balance. Throws RunFailure when only

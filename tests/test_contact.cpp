@@ -36,6 +36,37 @@ TEST(SlidingBlock, FrictionlessBlockFollowsTheInclinedPlaneSolution) {
   EXPECT_TRUE(result.summary["defaults"].contains("contact.normal_stiffness"));
 }
 
+TEST(SlidingBlock, NewmarkAtTenMillisecondStepsKeepsItsEnergy) {
+  // The same slide with Newmark's average acceleration at dt = 10 ms, where the contact springs
+  // (kn = 20 E t, period about 1e-4 s) are far from resolved. Newmark's trapezoid on the contact
+  // forces made energy wherever a spring opened within a step: 38,743 steps (1,926 redone by
+  // the energy check), 98 % of the work created and the block tumbling (rotation -3.8 rad).
+  // With the step's mean normal force (kernels/contact_energy) the springs give back what they
+  // held (measured: 158 steps, none redone by the energy check, |unaccounted| 2.5e-6 of the
+  // 21 kJ of work, block II on the closed form to 1e-5). Required: no step redone by the
+  // energy check, |unaccounted| and energy created each within 1e-4 of the work, u_x and u_y
+  // within 1e-3 of the closed form (as FrictionlessBlockFollowsTheInclinedPlaneSolution), no
+  // tipping, under 300 steps.
+  const auto run =
+      test::run_data_scene("sliding_block.toml", {"time.integrator=newmark", "time.dt=1e-2"});
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& h = run.history;
+  const auto& summary = run.result.summary;
+  const double work = summary["energy"]["external_work"].get<double>();
+  EXPECT_GT(work, 2e4);
+  EXPECT_EQ(summary["redone_by"]["energy"].get<long>(), 0);
+  EXPECT_LT(std::abs(summary["energy"]["unaccounted"].get<double>()), 1e-4 * work);
+  EXPECT_LT(summary["energy_check"]["created"].get<double>(), 1e-4 * work);
+  const double th = std::numbers::pi / 6, g = 10.0, t = h.at("time").back();
+  EXPECT_NEAR(t, 1.5, 1e-12);
+  const double ux = 0.5 * g * std::cos(th) * std::sin(th) * t * t;
+  const double uy = -0.5 * g * std::sin(th) * std::sin(th) * t * t;
+  EXPECT_NEAR(h.at("block2.ux").back(), ux, 1e-3 * std::abs(ux));
+  EXPECT_NEAR(h.at("block2.uy").back(), uy, 1e-3 * std::abs(uy));
+  EXPECT_LT(std::abs(h.at("block2.rotation").back()), 1e-3);
+  EXPECT_LT(summary["steps"].get<long>(), 300);
+}
+
 TEST(SlidingBlock, SingleBodyWithoutJointBuildsNoContactStage) {
   // No [[joint]]: no detection and no open-close iteration at all (timers.contact stays 0).
   const RunResult result = test::run_data_scene("cantilever_model_1.toml").result;
@@ -159,6 +190,31 @@ TEST(FrictionalIncline, SameSlideAtAQuarterOfTheStep) {
   ASSERT_TRUE(fine.run.result.ok) << fine.run.result.reason;
   EXPECT_NEAR(coarse.s.back(), fine.s.back(), 0.01 * fine.s.back());
   EXPECT_NEAR(fine.s.back(), frictional_incline_slide(1.0), 0.01 * frictional_incline_slide(1.0));
+}
+
+TEST(FrictionalIncline, NewmarkMakesNoEnergyInAStep) {
+  // The frictional incline under Newmark's average acceleration at the scene's dt = 10 ms.
+  // With the trapezoid on its contact forces a step created up to 28 % of the work and the
+  // block was thrown off the slope (11,234 steps, 48.8 % created, u_x 0.96 m). With the mean
+  // normal force, friction from it over the whole step and twice the end shear force
+  // (docs/method-choices.md, "Newmark and contacts"), measured: 3,069 steps (155 redone by the
+  // open-close iteration, none by the energy check), the most a step created 0.03 % of the
+  // work and 0.20 % over the run; the slide 2.2 % short of the closed form and 2.5 % of the
+  // work lost unbooked (the gaps measured anew at step starts, the release of springs at
+  // their start force: open points of issue 30); at dt = 2.5e-3 and 1e-3 -0.3 % and -2.1 %.
+  // Required: no step creating more than 1 % of the work and 1 % over the run; the slide
+  // within 5 % of the closed form, the velocity along the slope never reversed.
+  const InclineRun r = run_frictional_incline({"time.integrator=newmark"});
+  ASSERT_TRUE(r.run.result.ok) << r.run.result.reason;
+  const auto& summary = r.run.result.summary;
+  const double work = summary["energy"]["external_work"].get<double>();
+  EXPECT_GT(work, 4000.0);
+  EXPECT_LE(summary["energy_check"]["largest_step_created_share"].get<double>(), 0.01);
+  EXPECT_LE(summary["energy_check"]["created"].get<double>(), 0.01 * work);
+  const double t = r.run.history.at("time").back();
+  EXPECT_NEAR(r.s.back(), frictional_incline_slide(t), 0.05 * frictional_incline_slide(t));
+  for (std::size_t i = 1; i < r.v.size(); ++i)
+    ASSERT_GT(r.v[i], 0.0) << "the block moved up the slope at t = " << r.run.history.at("time")[i];
 }
 
 /// A 1 m x 0.5 m block on a 4 m x 1 m base, meshed separately (two blocks), placed `depth`

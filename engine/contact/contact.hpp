@@ -8,10 +8,11 @@ namespace rockdd {
 /// Open: no spring. Sliding: normal spring, friction force. Locked: normal and shear springs.
 enum class ContactState : std::uint8_t { open, sliding, locked };
 
-/// The springs a contact adds to K: kn g g^T when closed, shear_stiffness t t^T.
+/// The springs a contact adds to K: normal_stiffness g g^T (kn when closed), shear_stiffness
+/// t t^T.
 struct ContactSprings {
-  bool normal = false;
-  double shear_stiffness = 0.0;  // N/m
+  double normal_stiffness = 0.0;  // N/m
+  double shear_stiffness = 0.0;   // N/m
   bool operator==(const ContactSprings& other) const = default;
 };
 
@@ -42,6 +43,16 @@ struct Contact {
   double anchor_start = 0.0;        // shear_spring at the step start or when it closed (m)
   double end_gap = 0.0;             // the gap its force came from at the end of the last step (m)
   double unresisted_overlap = 0.0;  // its zero: an overlap no solve resisted (m)
+  // Newmark's energy-consistent contact forces (ContactStage::add_solve_forces): whether its
+  // spring was closed and whether locked at the start of the step, with its shear spring's
+  // elastic slip then; and the line the solve takes twice the step's mean normal force on,
+  // normal_force_line + normal_spring (gap - normal_gap_line): the tangent at the last iterate.
+  bool closed_at_start = false;
+  bool locked_at_start = false;
+  double shear_spring_start = 0.0;  // m
+  double normal_spring = 0.0;       // N/m
+  double normal_force_line = 0.0;   // N
+  double normal_gap_line = 0.0;     // m
 };
 
 }  // namespace rockdd

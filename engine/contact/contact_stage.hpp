@@ -32,11 +32,15 @@ class ContactStage {
   /// Boundary and rules from the model and the scene's joints; defaults for kn, ks; the
   /// sliding springs and forgiven overlaps of steps without inertia unless `analysis` is
   /// dynamic.
-  ContactStage(const Scene& scene, const Model& model, Analysis analysis);
+  /// With Newmark's scheme (`integrator` in a dynamic `analysis`) the solve takes each
+  /// contact's normal force as its mean over the step (kernels::mean_normal_force), so that
+  /// a spring that opens or closes within a step makes no energy.
+  ContactStage(const Scene& scene, const Model& model, Analysis analysis, Integrator integrator);
 
   /// The sliding springs and forgiven overlaps of steps without inertia, or neither with it
-  /// (a run that goes on with inertia: fracture.snap_back = "dynamic").
-  void set_analysis(Analysis analysis);
+  /// (a run that goes on with inertia: fracture.snap_back = "dynamic"), and the mean normal
+  /// force with Newmark's scheme.
+  void set_analysis(Analysis analysis, Integrator integrator);
 
   /// Finds the contacts at `positions`; the pairs that persist from the committed contacts
   /// `committed` (sorted by vertex and edge) keep their state. Returns true when the set of
@@ -47,6 +51,15 @@ class ContactStage {
   std::vector<std::int32_t> triples() const;
   /// Adds the forces of the closed contacts' springs at `positions` to `force` (2 per node).
   void add_spring_forces(std::span<const double> positions, std::span<double> force) const;
+  /// The contact forces the solve takes at `positions`, added to `force`: add_spring_forces'
+  /// without inertia and with DDA's scheme. With Newmark's, the sum of the step's start and
+  /// end forces, which its equation holds, taken so that contacts make no energy: twice the
+  /// normal force's mean over the step (kernels::mean_normal_force, on its tangent), of every
+  /// contact whose spring was closed at the start or is now; the shear of a contact locked
+  /// over the whole step at its start and end, and otherwise twice its end force.
+  void add_solve_forces(std::span<const double> positions, std::span<double> force) const;
+  /// Whether the solve takes each normal force as its mean over the step (Newmark).
+  bool energy_consistent() const { return energy_consistent_; }
   /// The springs of the closed contacts as matrices for K: contact c at slot `first_slot + c`
   /// of the layout (its triple follows the elements').
   const SlotMatrices& spring_matrices(std::int32_t first_slot);
@@ -119,11 +132,17 @@ class ContactStage {
   /// tolerance far below what matters for the rest.
   void set_force_scale(double scale) { force_scale_ = scale; }
 
-  /// The shear stiffness contact c adds to K: ks locked, its sliding spring sliding.
+  /// The normal stiffness contact c adds to K: kn closed, or with Newmark's scheme the
+  /// tangent of its mean normal force.
+  double normal_stiffness(const Contact& c) const;
+  /// The shear stiffness contact c adds to K: ks locked, its sliding spring sliding; with
+  /// Newmark's scheme twice that unless locked over the whole step (add_solve_forces).
   double shear_stiffness(const Contact& c) const {
-    return c.state == ContactState::locked    ? rules_.parameters.shear_stiffness
-           : c.state == ContactState::sliding ? c.slide_stiffness
-                                              : 0.0;
+    const double k = c.state == ContactState::locked    ? rules_.parameters.shear_stiffness
+                     : c.state == ContactState::sliding ? c.slide_stiffness
+                                                        : 0.0;
+    return energy_consistent_ && !(c.state == ContactState::locked && c.locked_at_start) ? 2.0 * k
+                                                                                         : k;
   }
   std::size_t size() const { return contacts_.size(); }
 
@@ -137,6 +156,9 @@ class ContactStage {
   ShearUpdate update_shear_with_inertia(Contact& c, double gap, double slip, double tolerance);
   /// Coulomb's law without inertia: a sliding contact keeps the spring sliding_stiffness.
   ShearUpdate update_shear_without_inertia(Contact& c, double gap, double slip, double tolerance);
+  /// Takes contact c's mean normal force at end gap `gap` as its new line; returns whether the
+  /// line the solve used was off it by more than `tolerance` (N).
+  bool follow_mean_normal_force(Contact& c, double gap, double tolerance) const;
   /// The normal force friction uses at gap `gap` (lagged once the shear has swung).
   double friction_normal_force(Contact& c, double gap) const;
   /// Friction (and cohesion, while bonded) under `normal_force`; a bond sheared past it by
@@ -153,6 +175,7 @@ class ContactStage {
   SlotMatrices spring_matrices_;  // scratch of spring_matrices()
   SpringChanges spring_changes_;  // scratch of spring_changes()
   bool started_ = false;  // a step has been committed: contacts that form now are not bonded
+  bool energy_consistent_ = false;  // Newmark: the solve takes mean normal forces
 };
 
 }  // namespace rockdd

@@ -26,7 +26,8 @@ struct CommittedState {
   // 0 on prescribed ones). Without inertia a step ends balanced against its mass term, not
   // at rest, and a load applied at once starts out of balance: the next step's loss.
   std::vector<double> residual;
-  // Per dof: the contact springs' force at the commit (as f_int: the body pushes them).
+  // Per dof: the contact springs' force at the commit (as f_int: the body pushes them). With
+  // DDA's scheme those its last solve had, with Newmark's those `acceleration` balances.
   std::vector<double> contact_force;
   double load_factor = 0.0;
   // Elements' and contact springs' elastic energy: where a step that starts out of balance

@@ -5,9 +5,9 @@
 namespace rockdd {
 
 void StepState::resize(std::size_t num_dofs, std::int32_t num_equations) {
-  for (auto* field :
-       {&f_int, &f_ext, &reaction, &reaction_first, &u_trial, &du, &f_contact,
-        &contact_force_solved, &positions, &damage_force, &restraint_force, &positions_settled})
+  for (auto* field : {&f_int, &f_ext, &reaction, &reaction_first, &u_trial, &du, &f_contact,
+                      &contact_force_solved, &contact_force_sum, &positions, &damage_force,
+                      &restraint_force, &positions_settled})
     field->assign(num_dofs, 0.0);
   rhs.assign(static_cast<std::size_t>(num_equations), 0.0);
 }
@@ -25,9 +25,9 @@ void StepState::begin_attempt(double at_time, double at_load_factor) {
 }
 
 void StepState::follow_split_nodes(std::span<const std::int32_t> node_origin) {
-  for (auto* field :
-       {&f_int, &f_ext, &reaction, &reaction_first, &u_trial, &du, &f_contact,
-        &contact_force_solved, &positions, &damage_force, &restraint_force, &positions_settled})
+  for (auto* field : {&f_int, &f_ext, &reaction, &reaction_first, &u_trial, &du, &f_contact,
+                      &contact_force_solved, &contact_force_sum, &positions, &damage_force,
+                      &restraint_force, &positions_settled})
     rockdd::follow_split_nodes(node_origin, *field);
 }
 

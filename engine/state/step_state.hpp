@@ -26,6 +26,8 @@ struct StepState {
   std::vector<double> f_contact;               // contact spring forces at the trial state
   std::vector<double> contact_force_solved;    // with DDA's inertia: the contact forces the
                                                // last solve had, before its update switched any
+  std::vector<double> contact_force_sum;       // with Newmark's: the contact forces the solve
+                                               // took at the step's end (start plus end forces)
   std::vector<double> positions;               // scratch: X + u for geometry queries
   std::vector<double> damage_force;            // f_int at the step's result, for damage checks
   std::vector<double> restraint_force;         // fragment restraint's force on the increment
