@@ -335,7 +335,7 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
   }
   // Co-rotation: the stiffness follows the elements' frames once any has turned by more than
   // kFrameTolerance since K was assembled (the internal force always uses the exact frames).
-  if (corotational_ && largest_rotation_change(model_, model_.u) > kFrameTolerance) {
+  if (corotational_ && frames_turned_past(model_, model_.u, kFrameTolerance)) {
     update_element_rotations(model_, model_.u);
     system_->invalidate();
   }
@@ -473,7 +473,7 @@ bool Simulation::follow_turned_frames(long step, int retries, const InertiaTerms
   const std::size_t num_dofs = model_.X.size();
   for (int k = 0; k < kMaxFrameCorrections; ++k) {
     for (std::size_t d = 0; d < num_dofs; ++d) trial_.positions[d] = model_.u[d] + trial_.du[d];
-    if (largest_rotation_change(model_, trial_.positions) <= kFrameTolerance) return true;
+    if (!frames_turned_past(model_, trial_.positions, kFrameTolerance)) return true;
     update_element_rotations(model_, trial_.positions);
     system_->invalidate();
     ++report_.counters.frame_corrections;

@@ -39,6 +39,25 @@ Rotation element_rotation_factor(const double xy0[6], const double xy[6]) {
   return {p / r, q / r};
 }
 
+bool turned_within(const double xy0[6], const double xy[6], Rotation frame, double bound) {
+  double b[3], c[3];
+  const double two_area = 2.0 * cst_gradients(xy0, b, c);
+  double f11 = 0.0, f12 = 0.0, f21 = 0.0, f22 = 0.0;
+  for (int k = 0; k < 3; ++k) {
+    f11 += xy[2 * k] * b[k];
+    f12 += xy[2 * k] * c[k];
+    f21 += xy[2 * k + 1] * b[k];
+    f22 += xy[2 * k + 1] * c[k];
+  }
+  const double sign = two_area < 0.0 ? -1.0 : 1.0;
+  const double p = sign * (f11 + f22), q = sign * (f21 - f12);
+  // r (cos, sin) of the turn relative to the frame, r = |(p, q)|. A tangent under bound / 2
+  // puts the turn under atan(bound / 2) < bound, a margin far above the round-off of p and q.
+  const double along = p * frame.cs + q * frame.sn;
+  const double across = q * frame.cs - p * frame.sn;
+  return along > 0.0 && std::abs(across) < 0.5 * bound * along;
+}
+
 void corotated_displacement(const double xy0[6], const double xy[6], Rotation r, double u[6]) {
   const double cs = r.cs, sn = r.sn;
   const double xc = (xy[0] + xy[2] + xy[4]) / 3.0, yc = (xy[1] + xy[3] + xy[5]) / 3.0;

@@ -26,6 +26,12 @@ double element_rotation(const double xy0[6], const double xy[6]);
 /// (F11 + F22, F21 - F12). Equal to Rotation(element_rotation(xy0, xy)) up to round-off.
 Rotation element_rotation_factor(const double xy0[6], const double xy[6]);
 
+/// Whether the element's rotation from xy0 to xy lies within `bound` (rad, at most 1) of the
+/// frame `frame` for certain, without trigonometry: the turn's tangent, taken relative to the
+/// frame from the unnormalised rotation factor, is under bound / 2. False says only that the
+/// exact angle must decide (element_rotation).
+bool turned_within(const double xy0[6], const double xy[6], Rotation frame, double bound);
+
 /// Displacement left once the rotation theta and the translation are taken out, in the
 /// reference frame: u_k = R^T (x_k - x_c) - (X_k - X_c), c the centroid.
 void corotated_displacement(const double xy0[6], const double xy[6], Rotation r, double u[6]);

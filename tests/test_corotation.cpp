@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <numbers>
 
 #include "kernels/corotation.hpp"
 #include "kernels/cst.hpp"
@@ -59,6 +61,48 @@ TEST(Corotation, RotationFactorIsTheCosineAndSineOfTheAngle) {
     EXPECT_NEAR(turned.cs, angle.cs, 1e-15) << theta;
     EXPECT_NEAR(turned.sn, angle.sn, 1e-15) << theta;
   }
+}
+
+TEST(Corotation, TurnedWithinNeverClearsATurnPastItsBound) {
+  // turned_within(xy0, xy, frame, bound) may say "within" only when the exact turn relative to
+  // the frame, |remainder(theta - phi, 2 pi)| from element_rotation, is below the bound; and it
+  // clears every turn below bound / 4 (a stretch of up to 20 % and shear around it), so that
+  // only elements near the bound take the exact angle. 20,000 random frames, turns, stretches.
+  std::uint64_t state = 12345;
+  const auto uniform = [&state](double lo, double hi) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return lo + (hi - lo) * static_cast<double>(state >> 11) * 0x1.0p-53;
+  };
+  const double bound = 1e-3;
+  int cleared = 0, exact = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double phi = uniform(-4.0, 4.0);
+    const double change = i % 2 == 0 ? uniform(-0.25, 0.25) * bound : uniform(-3.0, 3.0) * bound;
+    const double theta = phi + (i % 97 == 0 ? 3.0 : 0.0) + change;  // some turned half around
+    const double stretch = uniform(0.8, 1.2), shear = uniform(-0.1, 0.1);
+    // F = R(theta) U with U symmetric positive definite: its rotation factor is R(theta).
+    const double u[2][2] = {{stretch, shear}, {shear, 2.0 - stretch}};
+    const double c = std::cos(theta), s = std::sin(theta);
+    const double f[2][2] = {{c * u[0][0] - s * u[1][0], c * u[0][1] - s * u[1][1]},
+                            {s * u[0][0] + c * u[1][0], s * u[0][1] + c * u[1][1]}};
+    const double shift[2] = {uniform(-5.0, 5.0), uniform(-5.0, 5.0)};
+    double xy[6];
+    deform(f, shift, xy);
+    const double turn =
+        std::abs(std::remainder(element_rotation(kXy0, xy) - phi, 2.0 * std::numbers::pi));
+    const bool within = turned_within(kXy0, xy, Rotation(phi), bound);
+    if (within) {
+      ++cleared;
+      EXPECT_LT(turn, bound) << "frame " << phi << " turn " << turn;
+    } else {
+      ++exact;
+    }
+    if (turn < 0.25 * bound) {
+      EXPECT_TRUE(within) << "frame " << phi << " turn " << turn;
+    }
+  }
+  EXPECT_GT(cleared, 10000);
+  EXPECT_GT(exact, 3000);
 }
 
 TEST(Corotation, StretchAfterRotationIsMeasuredInTheElementFrame) {

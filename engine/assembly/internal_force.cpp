@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "engine/assembly/element_state.hpp"
 #include "kernels/corotation.hpp"
@@ -89,24 +90,35 @@ void sum_element_forces(const Model& model, const ElementColoring& coloring,
   });
 }
 
-double largest_rotation_change(const Model& model, std::span<const double> u) {
+bool frames_turned_past(const Model& model, std::span<const double> u, double tolerance) {
+  const bool framed = !model.rotation.empty();
+  if (framed && (model.rotation_cos.size() != model.rotation.size() ||
+                 model.rotation_sin.size() != model.rotation.size()))
+    throw std::logic_error("frames_turned_past: Model::rotation set without its cos and sin");
   return tbb::parallel_reduce(
-      tbb::blocked_range<std::int32_t>(0, model.num_elements(), 4096), 0.0,
-      [&](auto range, double largest) {
+      tbb::blocked_range<std::int32_t>(0, model.num_elements(), 4096), false,
+      [&](auto range, bool turned) {
+        if (turned) return true;
         for (std::int32_t e = range.begin(); e != range.end(); ++e) {
           double xy[6], x[6];
           gather_element(model.conn, e, model.X, xy);
           gather_element(model.conn, e, u, x);
           for (int k = 0; k < 6; ++k) x[k] += xy[k];
-          const double frame = model.rotation.empty() ? 0.0 : model.rotation[e];
+          // Nearly every element has turned far less than the tolerance, which a test without
+          // trigonometry shows; the exact angle decides for the others.
+          const kernels::Rotation frame =
+              framed ? kernels::Rotation(model.rotation_cos[e], model.rotation_sin[e])
+                     : kernels::Rotation{};
+          if (kernels::turned_within(xy, x, frame, tolerance)) continue;
+          const double angle = framed ? model.rotation[e] : 0.0;
           // The difference of two angles, wrapped to (-pi, pi].
           const double change =
-              std::remainder(kernels::element_rotation(xy, x) - frame, 2.0 * std::numbers::pi);
-          largest = std::max(largest, std::abs(change));
+              std::remainder(kernels::element_rotation(xy, x) - angle, 2.0 * std::numbers::pi);
+          if (std::abs(change) > tolerance) return true;
         }
-        return largest;
+        return false;
       },
-      [](double a, double b) { return std::max(a, b); });
+      [](bool a, bool b) { return a || b; });
 }
 
 namespace {
@@ -122,15 +134,23 @@ double current_rotation(const Model& model, std::span<const double> u, std::int3
 }  // namespace
 
 void update_element_rotations(Model& model, std::span<const double> u) {
-  model.rotation.resize(static_cast<std::size_t>(model.num_elements()));
-  tbb::parallel_for(std::int32_t{0}, model.num_elements(),
-                    [&](std::int32_t e) { model.rotation[e] = current_rotation(model, u, e); });
+  const auto n = static_cast<std::size_t>(model.num_elements());
+  model.rotation.resize(n);
+  model.rotation_cos.resize(n);
+  model.rotation_sin.resize(n);
+  tbb::parallel_for(std::int32_t{0}, model.num_elements(), [&](std::int32_t e) {
+    set_element_rotation(model, e, current_rotation(model, u, e));
+  });
 }
 
 void update_element_rotations(Model& model, std::span<const double> u,
                               std::span<const std::int32_t> elements) {
-  model.rotation.resize(static_cast<std::size_t>(model.num_elements()), 0.0);
-  for (const std::int32_t e : elements) model.rotation[e] = current_rotation(model, u, e);
+  const auto n = static_cast<std::size_t>(model.num_elements());
+  model.rotation.resize(n, 0.0);
+  model.rotation_cos.resize(n, 1.0);
+  model.rotation_sin.resize(n, 0.0);
+  for (const std::int32_t e : elements)
+    set_element_rotation(model, e, current_rotation(model, u, e));
 }
 
 double strain_energy(const Model& model, std::span<const double> strain,

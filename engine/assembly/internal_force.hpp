@@ -30,9 +30,9 @@ void refresh_element_forces(const Model& model, std::span<const double> u,
 void sum_element_forces(const Model& model, const ElementColoring& coloring,
                         std::span<const double> element_force, std::span<double> f_int);
 
-/// Largest change of any element's rotation, at displacement `u`, since its frame in K
-/// (Model::rotation) was set: how stale the stiffness is. Deterministic.
-double largest_rotation_change(const Model& model, std::span<const double> u);
+/// Whether any element, at displacement `u`, has turned by more than `tolerance` (rad, at most
+/// 1) since its frame in K (Model::rotation) was set: whether the stiffness is stale.
+bool frames_turned_past(const Model& model, std::span<const double> u, double tolerance);
 
 /// Sets each element's stiffness frame (Model::rotation) to its rotation at displacement `u`.
 void update_element_rotations(Model& model, std::span<const double> u);

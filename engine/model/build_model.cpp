@@ -144,6 +144,8 @@ Model build_model(const Scene& scene, const Mesh& mesh) {
   }
   model.damage.assign(static_cast<std::size_t>(num_elements), 0.0);
   model.rotation.assign(static_cast<std::size_t>(num_elements), 0.0);
+  model.rotation_cos.assign(static_cast<std::size_t>(num_elements), 1.0);
+  model.rotation_sin.assign(static_cast<std::size_t>(num_elements), 0.0);
   model.strain.assign(3 * static_cast<std::size_t>(num_elements), 0.0);
   model.stress.assign(3 * static_cast<std::size_t>(num_elements), 0.0);
   model.node_mass = lumped_node_mass(model);

@@ -3,6 +3,7 @@
 // Vector fields on nodes are interleaved (x, y) with 2 values per node, so a node's dofs
 // are 2i and 2i+1 and a whole field is one array that the solver can read directly.
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <map>
 #include <string>
@@ -48,6 +49,8 @@ struct Model {
   std::vector<double> compressive_strength;
   std::vector<double> friction_angle;
   std::vector<double> rotation;  // angle of each element's co-rotational frame in K (rad)
+  std::vector<double> rotation_cos;  // cos and sin of each rotation, set with it
+  std::vector<double> rotation_sin;  // (set_element_rotation)
   std::vector<double> strain;    // 3 per element: exx, eyy, gxy
   std::vector<double> stress;    // 3 per element: sxx, syy, sxy
 
@@ -58,6 +61,14 @@ struct Model {
   std::int32_t num_nodes() const { return static_cast<std::int32_t>(X.size() / 2); }
   std::int32_t num_elements() const { return static_cast<std::int32_t>(conn.size() / 3); }
 };
+
+/// Sets element e's stiffness frame to `angle`, with its cos and sin.
+inline void set_element_rotation(Model& model, std::int32_t e, double angle) {
+  const auto at = static_cast<std::size_t>(e);
+  model.rotation[at] = angle;
+  model.rotation_cos[at] = std::cos(angle);
+  model.rotation_sin[at] = std::sin(angle);
+}
 
 struct Mesh;
 

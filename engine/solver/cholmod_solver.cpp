@@ -517,19 +517,23 @@ bool CholmodSolver::update_expected_faster(std::int64_t columns) const {
   return cost < 1.0;
 }
 
-void CholmodSolver::solve(const double* b, double* x) {
+void CholmodSolver::solve(const double* b, double* x, int columns) {
   State& s = *state_;
   if (!s.factor_ready) throw std::logic_error("CholmodSolver::solve without a factorization");
+  if (columns < 1) throw std::invalid_argument("CholmodSolver::solve: columns must be >= 1");
   SerialOpenMpRegions serial;
   // One BLAS thread: a solve is too little work to share, and a woken OpenBLAS worker then
   // spins in sched_yield on the other core long after it (44 % of a 1-thread static solve's
   // samples). Also keeps the solve's rounding independent of OpenBLAS's thread count.
   BlasThreads blas(1);
   const auto n = static_cast<std::size_t>(s.n);
-  for (std::size_t k = 0; k < n; ++k) s.permuted[k] = b[s.perm[k]];  // b may alias x
+  const auto m = static_cast<std::size_t>(columns);
+  if (s.permuted.size() < n * m) s.permuted.resize(n * m);
+  for (std::size_t j = 0; j < m; ++j)  // b may alias x
+    for (std::size_t k = 0; k < n; ++k) s.permuted[j * n + k] = b[j * n + s.perm[k]];
   s.rhs.nrow = n;
-  s.rhs.ncol = 1;
-  s.rhs.nzmax = n;
+  s.rhs.ncol = m;
+  s.rhs.nzmax = n * m;
   s.rhs.d = n;
   s.rhs.x = s.permuted.data();
   s.rhs.z = nullptr;
@@ -541,7 +545,8 @@ void CholmodSolver::solve(const double* b, double* x) {
                  &s.common);
   if (s.x == nullptr || s.common.status < CHOLMOD_OK) throw RunFailure("CHOLMOD solve failed");
   const auto* solution = static_cast<const double*>(s.x->x);
-  for (std::size_t k = 0; k < n; ++k) x[s.perm[k]] = solution[k];
+  for (std::size_t j = 0; j < m; ++j)
+    for (std::size_t k = 0; k < n; ++k) x[j * n + s.perm[k]] = solution[j * n + k];
 }
 
 }  // namespace rockdd

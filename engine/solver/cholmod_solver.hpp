@@ -78,8 +78,9 @@ class CholmodSolver {
   /// factorization.
   bool update_expected_faster(std::int64_t columns) const;
   /// x = A^{-1} b for the current factor (factorized, then updated); b and x have n entries
-  /// and may alias.
-  void solve(const double* b, double* x);
+  /// per column (`columns` of them, one after the other) and may alias. Several columns share
+  /// one pass over the factor (BLAS-3 in the supernodes).
+  void solve(const double* b, double* x, int columns = 1);
 
   bool analyzed() const;
   /// Whether the factor is supernodal (false once update() has turned it simplicial).
