@@ -1,6 +1,7 @@
 #include "kernels/corotation.hpp"
 
 #include <cmath>
+#include <utility>
 
 #include "kernels/cst.hpp"
 
@@ -20,9 +21,12 @@ double element_rotation(const double xy0[6], const double xy[6]) {
   return std::atan2(f[1][0] - f[0][1], f[0][0] + f[1][1]);
 }
 
-Rotation element_rotation_factor(const double xy0[6], const double xy[6]) {
-  // 2A F = sum_k x_k (b_k, c_k): the factor 2A scales both components alike, so it drops out
-  // of the normalisation but for its sign (an inverted reference would turn R by pi).
+namespace {
+
+/// (p, q) = sign(A) (F11 + F22, F21 - F12) 2|A|: the rotation factor of F, not normalised.
+/// 2A F = sum_k x_k (b_k, c_k): the factor 2A scales both components alike, so it drops out
+/// of the normalisation but for its sign (an inverted reference would turn R by pi).
+std::pair<double, double> unnormalised_rotation(const double xy0[6], const double xy[6]) {
   double b[3], c[3];
   const double two_area = 2.0 * cst_gradients(xy0, b, c);
   double f11 = 0.0, f12 = 0.0, f21 = 0.0, f22 = 0.0;
@@ -33,24 +37,20 @@ Rotation element_rotation_factor(const double xy0[6], const double xy[6]) {
     f22 += xy[2 * k + 1] * c[k];
   }
   const double sign = two_area < 0.0 ? -1.0 : 1.0;
-  const double p = sign * (f11 + f22), q = sign * (f21 - f12);
+  return {sign * (f11 + f22), sign * (f21 - f12)};
+}
+
+}  // namespace
+
+Rotation element_rotation_factor(const double xy0[6], const double xy[6]) {
+  const auto [p, q] = unnormalised_rotation(xy0, xy);
   const double r = std::sqrt(p * p + q * q);
   if (!(r > 0.0)) return {};  // F = 0 or a pure reflection: atan2(0, 0) = 0 as well
   return {p / r, q / r};
 }
 
 bool turned_within(const double xy0[6], const double xy[6], Rotation frame, double bound) {
-  double b[3], c[3];
-  const double two_area = 2.0 * cst_gradients(xy0, b, c);
-  double f11 = 0.0, f12 = 0.0, f21 = 0.0, f22 = 0.0;
-  for (int k = 0; k < 3; ++k) {
-    f11 += xy[2 * k] * b[k];
-    f12 += xy[2 * k] * c[k];
-    f21 += xy[2 * k + 1] * b[k];
-    f22 += xy[2 * k + 1] * c[k];
-  }
-  const double sign = two_area < 0.0 ? -1.0 : 1.0;
-  const double p = sign * (f11 + f22), q = sign * (f21 - f12);
+  const auto [p, q] = unnormalised_rotation(xy0, xy);
   // r (cos, sin) of the turn relative to the frame, r = |(p, q)|. A tangent under bound / 2
   // puts the turn under atan(bound / 2) < bound, a margin far above the round-off of p and q.
   const double along = p * frame.cs + q * frame.sn;
