@@ -64,8 +64,10 @@ case $mode in
     need_toolchain
     jobs=$(nproc 2>/dev/null || echo 2)
     mkdir -p "$build_dir"
+    # A unity build parses the heavy headers once per batch of sources: 89 s of CPU against
+    # 130 s on 2 cores (70 s against 76 s of wall time alone, more beside other tests).
     CC=$clang CXX=$clangxx cmake -S "$source_dir" -B "$build_dir" -DROCKDD_FUZZ=ON \
-      -DCMAKE_BUILD_TYPE=Debug >"$build_dir/configure.log" 2>&1 ||
+      -DCMAKE_BUILD_TYPE=Debug -DCMAKE_UNITY_BUILD=ON >"$build_dir/configure.log" 2>&1 ||
       {
         cat "$build_dir/configure.log"
         exit 1
