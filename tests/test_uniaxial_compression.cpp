@@ -268,8 +268,8 @@ TEST(UniaxialCompression, RunPastFailureKeepsItsStep) {
   // 0.17 % of the work (bound 0.5 %); the load at the end 4.8 / 0.4 / 0.8 % of the peak (bound
   // 5 %); created 0.79 / 0.73 / 0.58 %, with 3 / 3 / 1 steps over the energy tolerance. Seed 2's
   // dt and seed 1's load lie close to their bounds. Still above issue 30's bounds, not tested
-  // here: 12.2 / 23.5 / 14.4 open-close iterations a step (bound 5) (docs/method-choices.md, "A redone step's mass
-  // term", "Frames that follow a turn" and "Located onsets").
+  // here: 12.2 / 23.5 / 14.4 open-close iterations a step (bound 5) (docs/method-choices.md, "A
+  // redone step's mass term", "Frames that follow a turn" and "Located onsets").
   const std::pair<const char*, double> seeds[] = {
       {"material.0.seed=1", 0.05}, {"material.0.seed=2", 0.05}, {"material.0.seed=3", 0.05}};
   for (const auto& [seed, load_left] : seeds) {
