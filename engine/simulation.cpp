@@ -14,6 +14,7 @@
 #include "engine/contact/contact_stage.hpp"
 #include "engine/damage/damage_stage.hpp"
 #include "engine/damage/disintegration.hpp"
+#include "engine/damage/load_path.hpp"
 #include "engine/loading/external_loads.hpp"
 #include "engine/loading/initial_motion.hpp"
 #include "engine/output/probes.hpp"
@@ -100,6 +101,7 @@ Simulation::Simulation(Scene scene, Model model, std::optional<MeshCacheSlot> me
   if (!model_.tensile_strength.empty()) damage_ = std::make_unique<DamageStage>(scene_, model_);
   watch_disintegration_ = damage_ && analysis_ == Analysis::quasi_static &&
                           fracturing_block_spread(model_).largest_share >= kFragmentShare;
+  watch_load_path_ = watch_disintegration_ && has_load_path_boundaries(bc_);
   rebuild_layout();
   // The step loop's timers start at zero: what the first layout took is set-up.
   std::swap(report_.setup_timers.layout, report_.timers.layout);
@@ -229,6 +231,9 @@ RunResult Simulation::run(const RunOptions& options) {
       // A detachment that ends the run (a static specimen that failed) still leaves the
       // committed step in history.csv and its frame.
       std::optional<RunFailure> fracture_failure;
+      // Whether the step's solution still joins the moving boundary to a held one, before its
+      // broken elements are detached (their crack faces have no contacts solved yet).
+      const bool carried = !watch_load_path_ || carries_load();
       bool detached = false;
       try {
         if (damage_) detached = detach_fractured_elements();
@@ -243,7 +248,12 @@ RunResult Simulation::run(const RunOptions& options) {
       if (detached && watch_disintegration_ && analysis_ == Analysis::quasi_static)
         if (const BlockSpread spread = fracturing_block_spread(model_);
             spread.largest_share < kFragmentShare)
-          report_.disintegration = Disintegration{step, t, spread};
+          report_.disintegration = Disintegration{step, t, spread, DisintegrationCause::fragments};
+      // Blocks that nothing joins to both boundaries have no equilibrium either: whatever they
+      // carry goes into the restraint, and their fragments crawl at the displacement check's dt.
+      if (!carried && !report_.disintegration && analysis_ == Analysis::quasi_static)
+        report_.disintegration = Disintegration{step, t, fracturing_block_spread(model_),
+                                                DisintegrationCause::no_load_path};
       // A step that ends at no onset lets a shortened dt grow back to the scene's. Where onsets
       // are located it may have damaged: onsets and growth do not follow the step's length
       // there, and a run past its peak, which damages in nearly every step, would otherwise
@@ -488,6 +498,13 @@ bool Simulation::follow_turned_frames(long step, int retries, const InertiaTerms
     if (!open_close_iteration(step, retries, inertia, &control)) return false;
   }
   return true;
+}
+
+bool Simulation::carries_load() {
+  ScopedTimer timer(report_.timers.detachment);
+  const bool joined = joins_moving_and_fixed_boundaries(model_, bc_, committed_.contacts);
+  load_path_seen_ = load_path_seen_ || joined;
+  return joined || !load_path_seen_;
 }
 
 bool Simulation::commit_checked_step(long step, double dt, const EnergyBalance& before,

@@ -228,6 +228,9 @@ class Simulation {
   void follow_cascade_with_inertia(long step, double time, double end_time, StepControl& control);
   /// The energy balance of the committed state, as history.csv and summary.json report it.
   EnergyBalance energy() const;
+  /// Whether the committed step joins the moving boundary to a held one through rock and
+  /// closed contacts; also true until a step first has (a platen that starts apart).
+  bool carries_load();
 
   Scene scene_;
   Analysis analysis_;      // of the steps: the scene's, until a cascade calls for inertia
@@ -241,6 +244,10 @@ class Simulation {
   // A quasi-static specimen that starts in at least one block larger than a fragment ends when
   // fracture leaves none (engine/damage/disintegration).
   bool watch_disintegration_ = false;
+  // Such a specimen between a moving and a held boundary also ends once nothing joins them, from
+  // the first step that joined them (engine/damage/load_path).
+  bool watch_load_path_ = false;
+  bool load_path_seen_ = false;
   bool corotational_ = false;  // strain in co-rotated element frames (not in static analysis)
   std::unique_ptr<Probes> probes_;
   std::unique_ptr<ContactStage> contact_;  // only for scenes with [[joint]] or fracture

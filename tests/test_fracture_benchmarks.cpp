@@ -592,6 +592,34 @@ BeamResponse run_notched_beam(const std::string& dt) {
   return beam;
 }
 
+TEST(CrackBand, NotchedBarRunOnEndsWhenNothingJoinsItsEnds) {
+  // Without its softening stop the bar is pulled on after its crack has run through the
+  // ligament. The pulled end (moving in x) and the held end (fixed in x) are then joined by no
+  // element with w < 1 and no closed contact, so nothing can carry the pull: the run ends at
+  // that step, ok, and says why (summary.json disintegration, cause "no_load_path";
+  // engine/damage/load_path), instead of pulling a broken bar to its end time. Measured (29
+  // November 2026): ends at step 120 (t = 59.5 s of 120) with 26 blocks, the largest 49.8 % of
+  // the bar, the pull 0.41 % and then 0 of its peak.
+  Scene scene = read_scene(test::data_file("notched_bar_tension.toml"), {"output.every=0"});
+  scene.time.stop_at_softening.reset();
+  scene.time.softening_probe.clear();
+  test::TempDir dir;
+  const test::SceneRun run = test::run_scene(scene, dir.path(), 1);
+  ASSERT_TRUE(run.result.ok) << run.result.reason;
+  const auto& summary = run.result.summary;
+  ASSERT_TRUE(summary.contains("disintegration"));
+  const auto& end = summary["disintegration"];
+  EXPECT_EQ(end["cause"].get<std::string>(), "no_load_path");
+  EXPECT_EQ(end["step"].get<long>(), summary["steps"].get<long>());
+  EXPECT_LT(run.history.at("time").back(), scene.time.end);
+  // Two halves are left, each far above a fragment: the fragment count could not end it.
+  EXPECT_GT(end["largest_block_share"].get<double>(), 0.3);
+  const auto& force = run.history.at("right.fx");
+  const double peak = *std::max_element(force.begin(), force.end());
+  EXPECT_LT(std::abs(force.back()), 0.01 * peak);
+  EXPECT_TRUE(summary["energy_check"]["balance_closes"].get<bool>());
+}
+
 TEST(NotchedBeam, PeakDoesNotMoveWithTheLoadStepAndTheCrackRunsFromTheNotch) {
   // Issue 26's standard test that no one tuned: a single-edge-notched beam in three-point
   // bending (200 x 50 mm, span 180 mm, notch 10 mm with a 1 mm round tip, E = 30 GPa,

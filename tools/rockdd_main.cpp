@@ -429,10 +429,17 @@ int run(const Options& o, std::optional<double> startup) {
     if (result.summary.contains("disintegration")) {
       const auto& d = result.summary["disintegration"];
       std::cerr << ", ended at step " << d["step"] << " (t = " << d["time"].get<double>()
-                << " s): fracture left the specimen in " << d["blocks"]
-                << " loose fragments, the largest " << 100 * d["largest_block_share"].get<double>()
-                << " % of it, so nothing of it carries load (analysis = \"dynamic\" follows "
-                   "fragments)";
+                << " s): ";
+      if (d["cause"] == "fragments")
+        std::cerr << "fracture left the specimen in " << d["blocks"]
+                  << " loose fragments, the largest "
+                  << 100 * d["largest_block_share"].get<double>() << " % of it";
+      else
+        std::cerr << "no chain of rock and closed contacts joins the moving boundary to a held "
+                     "one any more (the largest of "
+                  << d["blocks"] << " blocks holds " << 100 * d["largest_block_share"].get<double>()
+                  << " % of the specimen)";
+      std::cerr << ", so nothing of it carries load (analysis = \"dynamic\" follows fragments)";
     }
     std::cerr << "; outputs in " << out_dir.string() << "\n";
   }

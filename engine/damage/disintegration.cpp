@@ -23,4 +23,8 @@ BlockSpread fracturing_block_spread(const Model& model) {
   return spread;
 }
 
+const char* disintegration_cause_name(DisintegrationCause cause) {
+  return cause == DisintegrationCause::fragments ? "fragments" : "no_load_path";
+}
+
 }  // namespace rockdd

@@ -20,11 +20,21 @@ struct BlockSpread {
 /// The blocks of the elements whose material can damage, weighed by reference area.
 BlockSpread fracturing_block_spread(const Model& model);
 
-/// The step after which every block of a quasi-static specimen was a fragment.
+/// Why a quasi-static specimen was found fallen apart.
+enum class DisintegrationCause {
+  fragments,     // every block of it is a fragment
+  no_load_path,  // no chain of rock and closed contacts joins the moving boundary to a held one
+};
+
+/// The step after which a quasi-static specimen was fallen apart, and why.
 struct Disintegration {
   long step = 0;
   double time = 0.0;
   BlockSpread spread;
+  DisintegrationCause cause = DisintegrationCause::fragments;
 };
+
+/// "fragments" or "no_load_path", as summary.json names the cause.
+const char* disintegration_cause_name(DisintegrationCause cause);
 
 }  // namespace rockdd

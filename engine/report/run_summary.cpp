@@ -154,8 +154,12 @@ nlohmann::json run_summary(const RunSummaryInputs& in) {
     std::string open = energy_balance_warning(e, kEnergyBalanceShare, in.energy_check);
     if (!open.empty() && in.report.disintegration)
       open += "; its last step (" + std::to_string(in.report.disintegration->step) +
-              ") broke the specimen into loose fragments, which quasi-static steps hold only "
-              "by the restraint and the mass term (summary.json disintegration)";
+              (in.report.disintegration->cause == DisintegrationCause::fragments
+                   ? ") broke the specimen into loose fragments"
+                   : ") left no chain of rock and closed contacts between its moving and its "
+                     "held boundary") +
+              ", and quasi-static steps hold what is loose only by the restraint and the mass "
+              "term (summary.json disintegration)";
     s["energy_check"] = {{"scale", scale},
                          {"tolerance", in.energy_check.tolerance()},
                          {"created", in.energy_check.total_created()},
@@ -209,7 +213,8 @@ nlohmann::json run_summary(const RunSummaryInputs& in) {
                            {"time", d->time},
                            {"blocks", d->spread.blocks},
                            {"largest_block_share", d->spread.largest_share},
-                           {"fragment_share", kFragmentShare}};
+                           {"fragment_share", kFragmentShare},
+                           {"cause", disintegration_cause_name(d->cause)}};
   if (in.report.stopped_by_caller) s["stopped_by_caller"] = true;
   return s;
 }
