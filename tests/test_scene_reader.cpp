@@ -161,7 +161,7 @@ TEST(SceneReader, ReadsEveryFieldOfTheExample) {
   EXPECT_DOUBLE_EQ(s.fracture.damage_band, 1e-6);
   EXPECT_EQ(s.fracture.max_damage_passes, 500);
   EXPECT_TRUE(s.fracture.locate_onsets);
-  EXPECT_DOUBLE_EQ(s.fracture.growth_tolerance, 1e-3);
+  EXPECT_DOUBLE_EQ(s.fracture.growth_tolerance, 3e-4);
   EXPECT_DOUBLE_EQ(s.fracture.fragment_stiffness, 1e-6);
   EXPECT_DOUBLE_EQ(s.fracture.loose_part_support, 1.0);
   EXPECT_DOUBLE_EQ(s.fracture.restraint_relaxation, 1e-3);
@@ -205,7 +205,7 @@ TEST(SceneReader, StaticSceneWithoutTimeRunsOneStepAndRecordsEveryDefault) {
       {"fracture.damage_band", "1e-06"},  // recorded since the material can damage
       {"fracture.max_damage_passes", "500"},
       {"fracture.locate_onsets", "true"},
-      {"fracture.growth_tolerance", "0.001"},
+      {"fracture.growth_tolerance", "3e-04"},
       {"fracture.fragment_stiffness", "1e-06"},
       {"fracture.loose_part_support", "1"},
       {"fracture.restraint_relaxation", "0.001"},
