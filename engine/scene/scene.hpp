@@ -146,7 +146,7 @@ struct FractureSpec {
   // Without inertia, a step re-solves while damage that grew in its last pass changed some
   // element's modulus by more than this fraction: the step ends with the moduli its own
   // strains call for. 0: a pass without new onsets ends the step.
-  double growth_tolerance = 3e-4;  // docs/method-choices.md: the peaks converge from 3e-4 down
+  double growth_tolerance = 3e-4;    // docs/method-choices.md: the peaks converge from 3e-4 down
   bool locate_onsets = true;         // without inertia: a step that passes an undamaged element's
                                      // onset is cut at it, and the damage runs in a step of its own
   double fragment_stiffness = 1e-6;  // spring per corner, x E0 t, on blocks no boundary holds,
