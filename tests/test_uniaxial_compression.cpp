@@ -161,9 +161,9 @@ TEST(UniaxialCompression, PaperSpecimenEndsSplitByAFractureIntoFewLargeBlocks) {
   // kinetic + dissipated + snap-back leaves at most 2 % of the work at every step, with
   // summary unaccounted + anchor_work at most 2 % of it. Measured at growth_tolerance 3e-4
   // (29 November 2026; seeds 1, 2, 3): 2, 2, 3 blocks over 1 % of the elements; the largest
-  // two 70.4 / 17.5 %, 78.9 / 10.5 % and 76.4 / 10.4 %; the crack faces join opposite sides
-  // in seeds 1 and 2 and adjacent ones in seed 3 (tools/rockdd_results.py
-  // through_going_fracture); restraint 0.090, 0.098, 0.120 % of the work; re-solves create
+  // two 70.4 / 17.5 %, 78.9 / 10.5 % and 76.4 / 10.4 %; the splitting fracture runs from the
+  // top to the right side in seed 1 and from the left side to the bottom in seed 2 (drawn by
+  // tools/plot fracture); restraint 0.090, 0.098, 0.120 % of the work; re-solves create
   // 0, 0 and 0.002 %. Each seed ends with two blocks of >= 10 % of the area (through-going,
   // below), seed 3's second at 10.4 %.
   const std::pair<const char*, double> seeds[] = {
