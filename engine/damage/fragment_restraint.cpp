@@ -3,8 +3,8 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
-#include <numeric>
 
+#include "engine/common/disjoint_sets.hpp"
 #include "engine/model/edge_adjacency.hpp"
 
 namespace rockdd {
@@ -17,12 +17,7 @@ namespace {
 std::vector<std::int32_t> intact_parts(const Model& model, const NodeIncidence& incidence,
                                        std::int32_t& num_parts) {
   const auto num_elements = static_cast<std::size_t>(model.num_elements());
-  std::vector<std::int32_t> parent(num_elements);
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](std::int32_t e) {
-    while (parent[e] != e) e = parent[e] = parent[parent[e]];
-    return e;
-  };
+  DisjointSets parts(num_elements);
   const auto intact = [&](std::int32_t e) { return model.damage[e] < 1.0; };
   for (std::size_t e = 0; e < num_elements; ++e) {
     if (!intact(static_cast<std::int32_t>(e))) continue;
@@ -33,8 +28,7 @@ std::vector<std::int32_t> intact_parts(const Model& model, const NodeIncidence& 
         if (other <= static_cast<std::int32_t>(e) || !intact(other)) continue;
         const std::int32_t* corner = &model.conn[3 * static_cast<std::size_t>(other)];
         if (corner[0] != b && corner[1] != b && corner[2] != b) continue;
-        const std::int32_t ra = root(static_cast<std::int32_t>(e)), rb = root(other);
-        if (ra != rb) parent[std::max(ra, rb)] = std::min(ra, rb);  // the smaller one leads
+        parts.join(static_cast<std::int32_t>(e), other);
       }
     }
   }
@@ -42,7 +36,7 @@ std::vector<std::int32_t> intact_parts(const Model& model, const NodeIncidence& 
   num_parts = 0;
   for (std::size_t e = 0; e < num_elements; ++e) {
     if (!intact(static_cast<std::int32_t>(e))) continue;
-    const std::int32_t r = root(static_cast<std::int32_t>(e));
+    const std::int32_t r = parts.find(static_cast<std::int32_t>(e));
     if (part[r] < 0) part[r] = num_parts++;
     part[e] = part[r];
   }

@@ -1,9 +1,9 @@
 #include "engine/damage/load_path.hpp"
 
-#include <algorithm>
 #include <cstdint>
-#include <numeric>
 #include <vector>
+
+#include "engine/common/disjoint_sets.hpp"
 
 namespace rockdd {
 
@@ -36,33 +36,23 @@ bool has_load_path_boundaries(const BoundaryConditions& bc) {
 bool joins_moving_and_fixed_boundaries(const Model& model, const BoundaryConditions& bc,
                                        std::span<const Contact> contacts) {
   const auto num_nodes = static_cast<std::size_t>(model.num_nodes());
-  std::vector<std::int32_t> parent(num_nodes);
-  std::iota(parent.begin(), parent.end(), 0);
-  const auto root = [&](std::int32_t n) {
-    while (parent[n] != n) n = parent[n] = parent[parent[n]];
-    return n;
-  };
-  const auto join = [&](std::int32_t a, std::int32_t b) {
-    a = root(a);
-    b = root(b);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  };
+  DisjointSets parts(num_nodes);
   for (std::int32_t e = 0; e < model.num_elements(); ++e) {
     if (model.damage[e] >= 1.0) continue;
     const std::int32_t* corner = &model.conn[3 * static_cast<std::size_t>(e)];
-    join(corner[0], corner[1]);
-    join(corner[0], corner[2]);
+    parts.join(corner[0], corner[1]);
+    parts.join(corner[0], corner[2]);
   }
   for (const Contact& c : contacts)
     if (c.state != ContactState::open) {
-      join(c.vertex, c.a);
-      join(c.vertex, c.b);
+      parts.join(c.vertex, c.a);
+      parts.join(c.vertex, c.b);
     }
   std::vector<std::uint8_t> role(num_nodes, 0);
   for (std::size_t n = 0; n < num_nodes; ++n) {
     const std::uint8_t own = boundary_role(bc, n);
     if (own == 0) continue;
-    std::uint8_t& joined = role[static_cast<std::size_t>(root(static_cast<std::int32_t>(n)))];
+    std::uint8_t& joined = role[static_cast<std::size_t>(parts.find(static_cast<std::int32_t>(n)))];
     joined |= own;
     if (drives_and_holds(joined)) return true;
   }

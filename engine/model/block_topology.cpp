@@ -4,28 +4,10 @@
 
 #include <numeric>
 
+#include "engine/common/disjoint_sets.hpp"
+
 namespace rockdd {
 namespace {
-
-/// Union-find with path halving; small and local.
-struct DisjointSets {
-  std::vector<std::int32_t> parent;
-  explicit DisjointSets(std::size_t n) : parent(n) { std::iota(parent.begin(), parent.end(), 0); }
-  std::int32_t find(std::int32_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  }
-  // The smaller root wins, so the representative is the lowest member: deterministic.
-  void unite(std::int32_t a, std::int32_t b) {
-    a = find(a);
-    b = find(b);
-    if (a == b) return;
-    if (a < b)
-      parent[b] = a;
-    else
-      parent[a] = b;
-  }
-};
 
 bool binds(const EdgeAdjacency& adj, std::span<const std::uint8_t> intact, std::size_t slot) {
   return adj.neighbor[slot] >= 0 && intact[slot] != 0;
@@ -43,7 +25,7 @@ BlockTopology form_blocks(std::span<const std::int32_t> conn, std::int32_t num_n
   for (std::int32_t e = 0; e < num_elements; ++e)
     for (int k = 0; k < 3; ++k)
       if (binds(adjacency, edge_intact, 3 * static_cast<std::size_t>(e) + k))
-        blocks.unite(e, adjacency.neighbor[3 * e + k]);
+        blocks.join(e, adjacency.neighbor[3 * e + k]);
   topo.element_block.resize(static_cast<std::size_t>(num_elements));
   std::vector<std::int32_t> block_of_root(static_cast<std::size_t>(num_elements), -1);
   for (std::int32_t e = 0; e < num_elements; ++e) {
@@ -58,15 +40,11 @@ BlockTopology form_blocks(std::span<const std::int32_t> conn, std::int32_t num_n
   std::vector<std::int32_t> group_of_slot(conn.size(), 0);  // local group index per corner
   std::vector<std::int32_t> extra_groups(static_cast<std::size_t>(num_nodes), 0);
   tbb::parallel_for(tbb::blocked_range<std::int32_t>(0, num_nodes, 1024), [&](auto range) {
-    std::vector<std::int32_t> local_parent, local_group;
+    DisjointSets local;
+    std::vector<std::int32_t> local_group;
     for (std::int32_t n = range.begin(); n != range.end(); ++n) {
       const std::int32_t begin = inc.offset[n], count = inc.offset[n + 1] - begin;
-      local_parent.resize(count);
-      std::iota(local_parent.begin(), local_parent.end(), 0);
-      auto find = [&](std::int32_t x) {
-        while (local_parent[x] != x) x = local_parent[x] = local_parent[local_parent[x]];
-        return x;
-      };
+      local.reset(static_cast<std::size_t>(count));
       auto local_index = [&](std::int32_t element) {
         for (std::int32_t i = 0; i < count; ++i)
           if (inc.element[begin + i] == element) return i;
@@ -79,14 +57,13 @@ BlockTopology form_blocks(std::span<const std::int32_t> conn, std::int32_t num_n
           const bool touches_node = conn[slot] == n || conn[3 * e + (k + 1) % 3] == n;
           if (!touches_node || !binds(adjacency, edge_intact, slot)) continue;
           const std::int32_t j = local_index(adjacency.neighbor[slot]);
-          const std::int32_t a = find(i), b = find(j);
-          if (a != b) local_parent[std::max(a, b)] = std::min(a, b);
+          local.join(i, j);
         }
       }
       local_group.assign(count, -1);
       std::int32_t groups = 0;
       for (std::int32_t i = 0; i < count; ++i) {
-        const std::int32_t r = find(i);
+        const std::int32_t r = local.find(i);
         if (local_group[r] < 0) local_group[r] = groups++;
         const std::int32_t e = inc.element[begin + i];
         for (int c = 0; c < 3; ++c)
