@@ -146,8 +146,8 @@ TEST(LinearSystem, WithoutFactorUpdatesEveryDamageChangeIsAssembledAndFactorized
 }
 
 TEST(LinearSystem, ChangeOfManyElementsIsAssembledAfreshNotFolded) {
-  // Past the cost model's break-even (0.5 sqrt(n) update columns a factorization, 3 columns
-  // an element) a factorization is cheaper than the updates.
+  // Past the cost model's break-even (0.45 sqrt(n) + 4000 / sqrt(n) update columns a
+  // factorization, 3 columns an element) a factorization is cheaper than the updates.
   StageTimers timers;
   Plate plate = make_plate();
   auto system = fresh_system(timers, plate, true);

@@ -74,10 +74,14 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 }
 
 /// update_expected_faster() takes one refactorization to cost as much as
-/// kBreakEvenPerRootN * sqrt(n) update columns, and a conversion to simplicial form
-/// kConversionPerFactor refactorizations (measured by bench_open_close on 2D CST meshes and a
-/// pile of blocks, 1e4 to 1e6 dofs: break-even at 85, 150 and 450 columns; docs/benchmarks.md).
-constexpr double kBreakEvenPerRootN = 0.5;
+/// kBreakEvenPerRootN * sqrt(n) + kBreakEvenSmall / sqrt(n) update columns, and a conversion
+/// to simplicial form kConversionPerFactor refactorizations: measured by bench_open_close on
+/// 2D CST meshes, break-even at 85, 150 and 450 columns at 1e4, 1e5 and 1e6 dofs, which the
+/// two terms meet within 3 % (docs/benchmarks.md). The second term is what a factorization
+/// costs beyond its supernodes' flops at small sizes, where 0.5 sqrt(n) alone took 50
+/// columns for 85.
+constexpr double kBreakEvenPerRootN = 0.45;
+constexpr double kBreakEvenSmall = 4000.0;
 constexpr double kConversionPerFactor = 0.15;
 
 /// CHOLMOD's own test of a poor AMD ordering (cholmod_analyze.c, default strategy): at least
@@ -511,8 +515,9 @@ bool CholmodSolver::update_expected_faster(std::int64_t columns) const {
   if (columns <= 0) return true;
   // In units of one refactorization. A model, not timings: the choice changes the result's
   // round-off, and the results must not depend on how busy the machine was.
+  const double root_n = std::sqrt(static_cast<double>(s.n));
   double cost =
-      static_cast<double>(columns) / (kBreakEvenPerRootN * std::sqrt(static_cast<double>(s.n)));
+      static_cast<double>(columns) / (kBreakEvenPerRootN * root_n + kBreakEvenSmall / root_n);
   if (s.factor->is_super) cost += kConversionPerFactor;
   return cost < 1.0;
 }
