@@ -146,7 +146,7 @@ TEST(LinearSystem, WithoutFactorUpdatesEveryDamageChangeIsAssembledAndFactorized
 }
 
 TEST(LinearSystem, ChangeOfManyElementsIsAssembledAfreshNotFolded) {
-  // Past the cost model's break-even (0.45 sqrt(n) + 4000 / sqrt(n) update columns a
+  // Past the cost model's break-even (0.45 sqrt(n) + 4000 / sqrt(max(n, 5000)) update columns a
   // factorization, 3 columns an element) a factorization is cheaper than the updates.
   StageTimers timers;
   Plate plate = make_plate();

@@ -79,9 +79,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 /// 2D CST meshes, break-even at 85, 150 and 450 columns at 1e4, 1e5 and 1e6 dofs, which the
 /// two terms meet within 3 % (docs/benchmarks.md). The second term is what a factorization
 /// costs beyond its supernodes' flops at small sizes, where 0.5 sqrt(n) alone took 50
-/// columns for 85.
+/// columns for 85. Below kSmallestFitted dofs (half the smallest size measured) nothing was
+/// measured: the second term keeps its value there instead of growing without bound.
 constexpr double kBreakEvenPerRootN = 0.45;
 constexpr double kBreakEvenSmall = 4000.0;
+constexpr double kSmallestFitted = 5e3;
 constexpr double kConversionPerFactor = 0.15;
 
 /// CHOLMOD's own test of a poor AMD ordering (cholmod_analyze.c, default strategy): at least
@@ -515,9 +517,10 @@ bool CholmodSolver::update_expected_faster(std::int64_t columns) const {
   if (columns <= 0) return true;
   // In units of one refactorization. A model, not timings: the choice changes the result's
   // round-off, and the results must not depend on how busy the machine was.
-  const double root_n = std::sqrt(static_cast<double>(s.n));
-  double cost =
-      static_cast<double>(columns) / (kBreakEvenPerRootN * root_n + kBreakEvenSmall / root_n);
+  const double n = static_cast<double>(s.n);
+  const double break_even =
+      kBreakEvenPerRootN * std::sqrt(n) + kBreakEvenSmall / std::sqrt(std::max(n, kSmallestFitted));
+  double cost = static_cast<double>(columns) / break_even;
   if (s.factor->is_super) cost += kConversionPerFactor;
   return cost < 1.0;
 }

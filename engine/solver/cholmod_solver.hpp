@@ -72,10 +72,10 @@ class CholmodSolver {
   /// then unusable until the next factorize().
   void update(const LowRankTerms& terms, bool add);
   /// Whether update() with `columns` columns is expected to cost less than factorize(), by a
-  /// fixed cost model (0.45 sqrt(n) + 4000 / sqrt(n) columns per factorization, plus 0.15
-  /// factorizations for the conversion while the factor is supernodal), never by timings: the
-  /// choice changes round-off, and results must not depend on the machine's load. False without a
-  /// factorization.
+  /// fixed cost model (0.45 sqrt(n) + 4000 / sqrt(max(n, 5e3)) columns per factorization,
+  /// plus 0.15 factorizations for the conversion while the factor is supernodal), never by
+  /// timings: the choice changes round-off, and results must not depend on the machine's load.
+  /// False without a factorization.
   bool update_expected_faster(std::int64_t columns) const;
   /// x = A^{-1} b for the current factor (factorized, then updated); b and x have n entries
   /// per column (`columns` of them, one after the other) and may alias. Several columns share
