@@ -2,10 +2,13 @@
 // polar decomposition F = R U of a prescribed deformation.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <random>
 
+#include "kernels/corotated_cst_batch.hpp"
 #include "kernels/corotation.hpp"
 #include "kernels/cst.hpp"
 
@@ -156,6 +159,149 @@ TEST(Corotation, NodalRotationTurnsEachNode) {
   rotate_nodal(Rotation(std::acos(-1.0) / 2), v);
   const double expected[6] = {0, 1, -1, 0, -2, 2};
   for (int i = 0; i < 6; ++i) EXPECT_NEAR(v[i], expected[i], 1e-15);
+}
+
+/// One element's co-rotated strain, stress and force as the internal-force pass composes the
+/// one-element kernels.
+void one_element(const double xy0[6], const double x[6], double young, double poisson,
+                 PlaneKind plane, double t, double eps[3], double sig[3], double f[6]) {
+  double ue[6], d[9];
+  const Rotation turn = element_rotation_factor(xy0, x);
+  corotated_displacement(xy0, x, turn, ue);
+  elasticity_matrix(young, poisson, plane, d);
+  cst_strain(xy0, ue, eps);
+  cst_stress(d, eps, sig);
+  cst_internal_force(xy0, sig, t, f);
+  rotate_nodal(turn, f);
+  rotate_tensor(turn, sig);
+  eps[2] *= 0.5;
+  rotate_tensor(turn, eps);
+  eps[2] *= 2.0;
+}
+
+bool same_bits(double a, double b) {
+  return std::bit_cast<std::uint64_t>(a) == std::bit_cast<std::uint64_t>(b);
+}
+
+TEST(CorotatedCstBatch, EqualsTheOneElementKernelsBitForBit) {
+  // Not within a tolerance: the pass that uses the batch must leave every history as it was.
+  // Random triangles (either orientation, slivers), rotations over the whole circle, strains
+  // from 1e-9 to 0.3, moduli down to the damage floor, both plane kinds, partial batches, and
+  // elements with no rotation factor (all corners at one point: the identity is kept).
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int compared = 0;
+  for (int round = 0; round < 400; ++round) {
+    const PlaneKind plane = round % 2 ? PlaneKind::strain : PlaneKind::stress;
+    const int count = 1 + round % kCstBatch;
+    CstBatch batch;
+    for (int i = 0; i < count; ++i) {
+      double xy0[6];
+      for (double& v : xy0) v = unit(rng);
+      if (i == 3) xy0[4] = 0.5 * (xy0[0] + xy0[2]) + 1e-9, xy0[5] = 0.5 * (xy0[1] + xy0[3]);
+      const double theta = std::numbers::pi * unit(rng);
+      const double strain = std::pow(10.0, -9.0 + 8.5 * (0.5 + 0.5 * unit(rng)));
+      for (int k = 0; k < 3; ++k) {
+        const double X = xy0[2 * k] * (1.0 + strain * unit(rng));
+        const double Y = xy0[2 * k + 1] * (1.0 + strain * unit(rng));
+        batch.xy0[2 * k][i] = xy0[2 * k];
+        batch.xy0[2 * k + 1][i] = xy0[2 * k + 1];
+        batch.x[2 * k][i] = std::cos(theta) * X - std::sin(theta) * Y + 3.0;
+        batch.x[2 * k + 1][i] = std::sin(theta) * X + std::cos(theta) * Y - 1.0;
+        if (i == 5) batch.x[2 * k][i] = batch.x[2 * k + 1][i] = 0.25;
+      }
+      batch.young[i] = damaged_modulus(50e9 * (1.0 + 0.5 * unit(rng)), i == 7 ? 1.0 : 0.0);
+      batch.poisson[i] = 0.25 + 0.249 * unit(rng);
+    }
+    const CstBatch in = batch;
+    corotated_cst_forces(batch, count, plane, 0.75);
+    for (int i = 0; i < count; ++i) {
+      double xy0[6], x[6], eps[3], sig[3], f[6];
+      for (int k = 0; k < 6; ++k) {
+        xy0[k] = in.xy0[k][i];
+        x[k] = in.x[k][i];
+      }
+      one_element(xy0, x, in.young[i], in.poisson[i], plane, 0.75, eps, sig, f);
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_TRUE(same_bits(batch.strain[k][i], eps[k])) << "round " << round << " lane " << i;
+        EXPECT_TRUE(same_bits(batch.stress[k][i], sig[k])) << "round " << round << " lane " << i;
+      }
+      for (int k = 0; k < 6; ++k)
+        EXPECT_TRUE(same_bits(batch.force[k][i], f[k])) << "round " << round << " lane " << i;
+      ++compared;
+    }
+  }
+  EXPECT_EQ(compared, 400 / kCstBatch * (kCstBatch * (kCstBatch + 1) / 2));
+}
+
+TEST(CorotatedCstBatch, AnElementWithoutRotationFactorKeepsTheIdentity) {
+  // All corners at one point: F = 0, whose polar decomposition has no rotation;
+  // element_rotation_factor keeps the identity, and so must the lane (its force is then the
+  // force of the reference frame's displacement, finite).
+  CstBatch batch;
+  const double xy0[6] = {0.0, 0.0, 1.0, 0.0, 0.0, 1.0};
+  for (int k = 0; k < 6; ++k) {
+    batch.xy0[k][0] = xy0[k];
+    batch.x[k][0] = 2.0;
+  }
+  batch.young[0] = 1e9;
+  batch.poisson[0] = 0.2;
+  corotated_cst_forces(batch, 1, PlaneKind::stress, 1.0);
+  double eps[3], sig[3], f[6];
+  double x[6];
+  for (double& v : x) v = 2.0;
+  one_element(xy0, x, 1e9, 0.2, PlaneKind::stress, 1.0, eps, sig, f);
+  for (int k = 0; k < 6; ++k) {
+    EXPECT_TRUE(std::isfinite(batch.force[k][0]));
+    EXPECT_TRUE(same_bits(batch.force[k][0], f[k]));
+  }
+  // The reference frame's strain of collapsing the unit triangle onto a point: -1 each way.
+  EXPECT_DOUBLE_EQ(batch.strain[0][0], -1.0);
+  EXPECT_DOUBLE_EQ(batch.strain[1][0], -1.0);
+}
+
+TEST(CorotatedCstBatch, TurnedWithinDecidesAsTheOneElementTest) {
+  // The frame check takes the batch's answer instead of the one-element test's: the same
+  // decision for every lane, at turns on either side of the bound and near it.
+  std::mt19937_64 rng(30);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int within_count = 0, compared = 0;
+  for (int round = 0; round < 300; ++round) {
+    const int count = 1 + round % kCstBatch;
+    const double bound = round % 3 == 0 ? 1e-3 : 0.5;
+    CstBatch batch;
+    double frame_cos[kCstBatch], frame_sin[kCstBatch];
+    for (int i = 0; i < count; ++i) {
+      const double theta = std::numbers::pi * unit(rng);
+      const double frame = theta + bound * 1.5 * unit(rng);
+      frame_cos[i] = std::cos(frame);
+      frame_sin[i] = std::sin(frame);
+      for (int k = 0; k < 3; ++k) {
+        const double X = unit(rng), Y = unit(rng);
+        batch.xy0[2 * k][i] = X;
+        batch.xy0[2 * k + 1][i] = Y;
+        batch.x[2 * k][i] = std::cos(theta) * X - std::sin(theta) * Y;
+        batch.x[2 * k + 1][i] = std::sin(theta) * X + std::cos(theta) * Y;
+      }
+    }
+    const CstBatch in = batch;
+    bool within[kCstBatch];
+    turned_within(batch, count, frame_cos, frame_sin, bound, within);
+    for (int i = 0; i < count; ++i) {
+      double xy0[6], x[6];
+      for (int k = 0; k < 6; ++k) {
+        xy0[k] = in.xy0[k][i];
+        x[k] = in.x[k][i];
+      }
+      EXPECT_EQ(within[i], turned_within(xy0, x, Rotation(frame_cos[i], frame_sin[i]), bound))
+          << "round " << round << " lane " << i;
+      within_count += within[i];
+      ++compared;
+    }
+  }
+  // Both answers occur.
+  EXPECT_GT(within_count, compared / 10);
+  EXPECT_LT(within_count, compared - compared / 10);
 }
 
 }  // namespace
