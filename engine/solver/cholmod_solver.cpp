@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "engine/common/errors.hpp"
+#include "engine/solver/cholmod_statistics_clock.hpp"
 #include "engine/solver/serial_openmp_regions.hpp"
 
 #ifndef ROCKDD_SOLVER_CODE_HASH
@@ -437,6 +438,7 @@ void CholmodSolver::factorize(const double* values) {
   State& s = *state_;
   if (s.symbolic == nullptr) throw std::logic_error("CholmodSolver::factorize before analyze");
   SerialOpenMpRegions serial;
+  StoppedCholmodClock no_statistics_clock;
   // No more BLAS threads than the run was given (--threads): TBB's limit in force now.
   const auto allowed = static_cast<int>(
       tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism));
