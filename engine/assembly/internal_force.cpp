@@ -53,6 +53,18 @@ inline void add_element_force(const Model& model, std::int32_t e, const double f
   }
 }
 
+/// Element e's reference corners and its corners at displacement u, into `lane` of `batch`.
+inline void load_corners(const Model& model, std::int32_t e, std::span<const double> u,
+                         kernels::CstBatch& batch, int lane) {
+  double xy[6], ue[6];
+  gather_element(model.conn, e, model.X, xy);
+  gather_element(model.conn, e, u, ue);
+  for (int k = 0; k < 6; ++k) {
+    batch.xy0[k][lane] = xy[k];
+    batch.x[k][lane] = xy[k] + ue[k];
+  }
+}
+
 /// The co-rotated forces of the elements of `chunks`, kernels::kCstBatch at a time: bitwise what
 /// element_internal_force gives each (tests/test_corotation), in fewer instructions
 /// (docs/performance.md). The forces are summed into f_int element by element in the chunks'
@@ -84,13 +96,7 @@ void corotated_chunk_forces(const Model& model, const ElementColoring& coloring,
   for (const std::int32_t chunk : chunks) {
     const std::int32_t end = coloring.chunk_end(chunk);
     for (std::int32_t e = coloring.chunk_begin(chunk); e < end; ++e) {
-      double xy[6], ue[6];
-      gather_element(model.conn, e, model.X, xy);
-      gather_element(model.conn, e, u, ue);
-      for (int k = 0; k < 6; ++k) {
-        batch.xy0[k][count] = xy[k];
-        batch.x[k][count] = xy[k] + ue[k];
-      }
+      load_corners(model, e, u, batch, count);
       batch.young[count] = kernels::damaged_modulus(model.young[e], model.damage[e]);
       batch.poisson[count] = model.poisson[e];
       lane_element[count] = e;
@@ -160,13 +166,7 @@ bool frames_turned_past(const Model& model, std::span<const double> u, double to
           const int count = std::min(kernels::kCstBatch, range.end() - first);
           for (int i = 0; i < count; ++i) {
             const std::int32_t e = first + i;
-            double xy[6], x[6];
-            gather_element(model.conn, e, model.X, xy);
-            gather_element(model.conn, e, u, x);
-            for (int k = 0; k < 6; ++k) {
-              batch.xy0[k][i] = xy[k];
-              batch.x[k][i] = xy[k] + x[k];
-            }
+            load_corners(model, e, u, batch, i);
             frame_cos[i] = framed ? model.rotation_cos[e] : 1.0;
             frame_sin[i] = framed ? model.rotation_sin[e] : 0.0;
           }
