@@ -44,23 +44,20 @@ void unnormalised_rotation(const CstBatch& batch, const double b[3][B], const do
   }
 }
 
-/// Lanes [count, B) take lane 0's inputs, so that every lane computes finite numbers.
-void pad_lanes(CstBatch& batch, int count) {
-  for (int i = count; i < B; ++i) {
+/// Lanes [count, B) take lane 0's corners, so that every lane computes finite numbers.
+void pad_corners(CstBatch& batch, int count) {
+  for (int i = count; i < B; ++i)
     for (int k = 0; k < 6; ++k) {
       batch.xy0[k][i] = batch.xy0[k][0];
       batch.x[k][i] = batch.x[k][0];
     }
-    batch.young[i] = batch.young[0];
-    batch.poisson[i] = batch.poisson[0];
-  }
 }
 
 }  // namespace
 
 void turned_within(CstBatch& batch, int count, const double frame_cos[kCstBatch],
                    const double frame_sin[kCstBatch], double bound, bool within[kCstBatch]) {
-  pad_lanes(batch, count);
+  pad_corners(batch, count);  // the moduli are not read (nor set by the frame check)
   double b[3][B], c[3][B], area[B], p[B], q[B];
   reference_gradients(batch, b, c, area);
   unnormalised_rotation(batch, b, c, area, p, q);
@@ -73,7 +70,11 @@ void turned_within(CstBatch& batch, int count, const double frame_cos[kCstBatch]
 }
 
 void corotated_cst_forces(CstBatch& batch, int count, PlaneKind plane, double t) {
-  pad_lanes(batch, count);
+  pad_corners(batch, count);
+  for (int i = count; i < B; ++i) {
+    batch.young[i] = batch.young[0];
+    batch.poisson[i] = batch.poisson[0];
+  }
   const auto& xy0 = batch.xy0;
   const auto& x = batch.x;
   double b[3][B], c[3][B], area[B], p[B], q[B];

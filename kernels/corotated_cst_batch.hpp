@@ -26,8 +26,8 @@ struct CstBatch {
 
 /// corotation.hpp's turned_within for lanes [0, count) of `batch`'s corners, each against its
 /// frame (frame_cos, frame_sin): within[i] true says that lane i has turned less than `bound`
-/// for certain, false that its exact angle must decide (the lanes past count are overwritten
-/// with lane 0's corners).
+/// for certain, false that its exact angle must decide. Reads only the corners (the lanes past
+/// count are overwritten with lane 0's).
 void turned_within(CstBatch& batch, int count, const double frame_cos[kCstBatch],
                    const double frame_sin[kCstBatch], double bound, bool within[kCstBatch]);
 

@@ -29,7 +29,8 @@ Rotation element_rotation_factor(const double xy0[6], const double xy[6]);
 /// Whether the element's rotation from xy0 to xy lies within `bound` (rad, at most 1) of the
 /// frame `frame` for certain, without trigonometry: the turn's tangent, taken relative to the
 /// frame from the unnormalised rotation factor, is under bound / 2. False says only that the
-/// exact angle must decide (element_rotation).
+/// exact angle must decide (element_rotation). The frame check runs its batch form
+/// (corotated_cst_batch.hpp), which tests/test_corotation holds to this one's decisions.
 bool turned_within(const double xy0[6], const double xy[6], Rotation frame, double bound);
 
 /// Displacement left once the rotation theta and the translation are taken out, in the

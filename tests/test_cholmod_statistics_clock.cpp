@@ -7,6 +7,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <thread>
 #include <vector>
 
 #include "engine/solver/cholmod_statistics_clock.hpp"
@@ -26,6 +27,10 @@ TEST(CholmodStatisticsClock, ReadsZeroOnlyWhileStoppedOnThisThread) {
       EXPECT_EQ(SuiteSparse_time(), 0.0);
     }
     EXPECT_TRUE(StoppedCholmodClock::active());  // the inner scope restores the outer one's
+    // Another thread (a library user's, a TBB worker) keeps SuiteSparse's clock.
+    double elsewhere = 0.0;
+    std::thread([&] { elsewhere = SuiteSparse_time(); }).join();
+    EXPECT_GT(elsewhere, 0.0);
   }
   EXPECT_FALSE(StoppedCholmodClock::active());
   EXPECT_GT(SuiteSparse_time(), 0.0);
