@@ -7,6 +7,7 @@
 #include <map>
 #include <memory>
 
+#include "bench/bench_main.hpp"
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/internal_force.hpp"
@@ -105,4 +106,6 @@ BENCHMARK(BM_StiffnessLayout)->Apply(sizes_and_threads);
 }  // namespace
 }  // namespace rockdd
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rockdd::bench::run_benchmarks(argc, argv);
+}

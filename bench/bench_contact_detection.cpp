@@ -12,6 +12,7 @@
 #include <numbers>
 #include <random>
 
+#include "bench/bench_main.hpp"
 #include "engine/contact/contact_detection.hpp"
 
 namespace rockdd {
@@ -138,4 +139,6 @@ BENCHMARK(BM_ExtractBlockBoundary)
 }  // namespace
 }  // namespace rockdd
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rockdd::bench::run_benchmarks(argc, argv);
+}

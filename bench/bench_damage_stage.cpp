@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_main.hpp"
 #include "engine/damage/damage_stage.hpp"
 #include "engine/engine.hpp"
 #include "engine/report/run_result.hpp"
@@ -85,4 +86,6 @@ BENCHMARK(BM_LocateOnset)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::k
 }  // namespace
 }  // namespace rockdd
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rockdd::bench::run_benchmarks(argc, argv);
+}

@@ -25,6 +25,7 @@
 #include <random>
 #include <vector>
 
+#include "bench/bench_main.hpp"
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
 #include "engine/contact/contact_stage.hpp"
@@ -204,4 +205,6 @@ BENCHMARK(BM_RebuildAfterDetachment)->Apply(cases);
 }  // namespace
 }  // namespace rockdd
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rockdd::bench::run_benchmarks(argc, argv);
+}

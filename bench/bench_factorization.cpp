@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "bench/bench_main.hpp"
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
@@ -155,4 +156,6 @@ BENCHMARK(BM_SolveColumns)
 }  // namespace
 }  // namespace rockdd
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rockdd::bench::run_benchmarks(argc, argv);
+}

@@ -24,6 +24,7 @@
 #include <random>
 #include <vector>
 
+#include "bench/bench_main.hpp"
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
@@ -566,4 +567,6 @@ BENCHMARK(BM_PileFirstUpdateSolve)->Apply(pile_changes);
 }  // namespace
 }  // namespace rockdd
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rockdd::bench::run_benchmarks(argc, argv);
+}

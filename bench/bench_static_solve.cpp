@@ -7,6 +7,7 @@
 
 #include <chrono>
 
+#include "bench/bench_main.hpp"
 #include "engine/assembly/assemble_stiffness.hpp"
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/assembly/stiffness_layout.hpp"
@@ -80,4 +81,6 @@ BENCHMARK(BM_BrazilianStaticSolveVsBareCholmod)
 }  // namespace
 }  // namespace rockdd
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rockdd::bench::run_benchmarks(argc, argv);
+}

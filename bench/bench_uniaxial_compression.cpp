@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <string>
 
+#include "bench/bench_main.hpp"
 #include "engine/engine.hpp"
 #include "engine/report/run_result.hpp"
 
@@ -71,4 +72,6 @@ BENCHMARK(BM_UniaxialCompressionTo20PercentSoftening)
 }  // namespace
 }  // namespace rockdd
 
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  return rockdd::bench::run_benchmarks(argc, argv);
+}

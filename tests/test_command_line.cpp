@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "engine/solver/blas_kernels.hpp"
 #include "support/command_line.hpp"
 #include "support/file_text.hpp"
 #include "support/temp_dir.hpp"
@@ -143,6 +144,46 @@ TEST(CommandLine, GmshIsLoadedOnlyToMesh) {
   EXPECT_EQ(nlohmann::json::parse(test::read_text(
                 tmp.path() / "hit/brazilian-disk-elastic/summary.json"))["mesh_cache"],
             "hit");
+}
+
+TEST(CommandLine, OpenBlasFallingBackToPrescottIsRestartedWithHaswellUnlessASetIsNamed) {
+  // OpenBLAS names the set it loads when OPENBLAS_VERBOSE=2: OpenBLAS's own choice first and,
+  // after a restart, the set rockdd asked for. A set the environment names is kept, and the
+  // restarted process is the same command: its output and exit status.
+  test::TempDir tmp;
+  const auto sets_loaded = [&](const std::string& environment, const std::string& args) {
+    const test::Invocation run = test::run_shell(
+        "cd '" + tmp.path().string() + "' && env -u OPENBLAS_CORETYPE OPENBLAS_VERBOSE=2 " +
+        environment + " '" + ROCKDD_BINARY + "' " + args + " 2>&1");
+    std::vector<std::string> sets;
+    const std::regex core("Core: (\\S+)");
+    for (std::sregex_iterator it(run.output.begin(), run.output.end(), core), end; it != end; ++it)
+      sets.push_back((*it)[1]);
+    return std::make_pair(sets, run);
+  };
+  const auto [own_sets, version] = sets_loaded("", "--version");
+  ASSERT_FALSE(own_sets.empty()) << version.output;
+  EXPECT_EQ(version.exit_code, 0);
+  EXPECT_NE(version.output.find("rockdd "), std::string::npos);
+  const std::string own = own_sets.front();
+  const std::string better = better_blas_kernel_set(own, cpu_vector_features());
+  if (better.empty())
+    EXPECT_EQ(own_sets, std::vector<std::string>{own});
+  else
+    EXPECT_EQ(own_sets, (std::vector<std::string>{own, better}));
+
+  const auto [named_sets, named] = sets_loaded("OPENBLAS_CORETYPE=Prescott", "--version");
+  EXPECT_EQ(named_sets, std::vector<std::string>{"Prescott"}) << named.output;
+
+  const std::string scene = (kSource / "data/cantilever_model_1.toml").string();
+  const auto [run_sets, run] = sets_loaded("", "run '" + scene + "' --quiet --out out");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(nlohmann::json::parse(test::read_text(
+                tmp.path() / "out/cantilever-model-1/summary.json"))["solver"]["blas_kernels"],
+            run_sets.back());
+  const auto [bad_sets, bad] = sets_loaded("", "run no-such-scene.toml --quiet");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_NE(bad.output.find("no-such-scene.toml"), std::string::npos) << bad.output;
 }
 
 TEST(CommandLine, AStoredOrderingGivesBitwiseTheResultsOfComputingIt) {

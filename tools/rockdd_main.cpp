@@ -23,6 +23,7 @@
 #include "engine/output/run_outputs.hpp"
 #include "engine/report/run_result.hpp"
 #include "engine/scene/step_budget.hpp"
+#include "engine/solver/blas_kernels.hpp"
 #include "tools/monte_carlo_command.hpp"
 #ifdef ROCKDD_HAVE_MPI
 #include "tools/mpi_ensemble.hpp"
@@ -535,6 +536,7 @@ bool is_help(const char* arg) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  rockdd::restart_with_better_blas_kernels(argv);
   // Before any engine work: what loading the libraries and static initialisation took.
   const std::optional<double> startup = rockdd::process_age_seconds();
   if (argc >= 2 && is_help(argv[1])) {

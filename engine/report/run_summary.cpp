@@ -4,6 +4,7 @@
 
 #include "engine/common/process_clock.hpp"
 #include "engine/contact/contact_stage.hpp"
+#include "engine/solver/blas_kernels.hpp"
 
 namespace rockdd {
 namespace {
@@ -195,7 +196,8 @@ nlohmann::json run_summary(const RunSummaryInputs& in) {
                  {"ordering", std::string(fill_ordering_name(st.ordering))},
                  {"ordering_cache", mesh_cache_outcome_name(in.system.ordering_cache())},
                  {"factor_nonzeros", st.factor_nonzeros},
-                 {"factor_flops", st.last_factor_flops}};
+                 {"factor_flops", st.last_factor_flops},
+                 {"blas_kernels", blas_kernel_set()}};
   if (scene.time.stop_at_softening) {
     const SofteningMonitor& m = in.report.softening;
     s["softening"] = {{"probe", scene.time.softening_probe},

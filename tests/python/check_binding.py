@@ -5,6 +5,7 @@
 
 with the module on PYTHONPATH. Exits non-zero, with the reason, when the case fails."""
 import argparse
+import ctypes
 import csv
 import math
 import os
@@ -29,9 +30,21 @@ def expect(condition, message):
         raise AssertionError(message)
 
 
+def blas_kernels_of_this_process():
+    """The kernel set OpenBLAS runs in this process, the one the module's runs use."""
+    openblas = ctypes.CDLL("libopenblas.so.0")
+    openblas.openblas_get_corename.restype = ctypes.c_char_p
+    return openblas.openblas_get_corename().decode()
+
+
 def cli(args, work):
-    """`rockdd ARGS` in `work`; its output when it succeeds."""
-    done = subprocess.run([ARGS.rockdd] + args, cwd=work, capture_output=True, text=True)
+    """`rockdd ARGS` in `work`; its output when it succeeds. The command line runs the kernel
+    set of this process's OpenBLAS: where OpenBLAS falls back to Prescott, `rockdd` would
+    otherwise start itself again with Haswell's (docs/scene.md, "Environment"), whose
+    factorizations round differently, and these cases compare one engine, bit for bit."""
+    env = dict(os.environ, OPENBLAS_CORETYPE=blas_kernels_of_this_process())
+    done = subprocess.run([ARGS.rockdd] + args, cwd=work, capture_output=True, text=True,
+                          env=env)
     expect(done.returncode == 0, f"rockdd {' '.join(args)} exited {done.returncode}:\n"
                                  f"{done.stdout}{done.stderr}")
     return done.stdout + done.stderr
