@@ -40,6 +40,7 @@ rockdd's nodal stress) and the mean uy of the top flat's nodes (rockdd's probe "
 """
 
 import argparse
+import ctypes
 import json
 import math
 import os
@@ -50,6 +51,18 @@ import tomllib
 here = os.path.dirname(os.path.abspath(__file__))
 root = os.path.normpath(os.path.join(here, "..", ".."))
 
+
+
+def blas_kernels():
+    """The kernel set OpenBLAS runs in this process (what MUMPS's BLAS calls use), or "?"."""
+    for name in ("libopenblas.so.0", "libblas.so.3"):
+        try:
+            lib = ctypes.CDLL(name)
+            lib.openblas_get_corename.restype = ctypes.c_char_p
+            return lib.openblas_get_corename().decode()
+        except (OSError, AttributeError):
+            continue
+    return "?"
 
 def scene_problem(path, element_size):
     """The numbers of the disk scene that this script reproduces."""
@@ -294,6 +307,7 @@ def main():
         "mumps_ordering_used": factor.getMumpsInfog(7),  # 0 AMD, 2 AMF, 3 SCOTCH, 4 PORD, 5 METIS
         "mumps_factor_entries": factor.getMumpsInfog(29),
         "mumps_flops": factor.getMumpsRinfog(3),
+        "blas_kernels": blas_kernels(),
     }
     print(f"DOLFINx {info['dolfinx']}, PETSc {info['petsc']}, factor: {info['factor_solver']} "
           f"Cholesky; {info['triangles']} triangles, {info['nodes']} nodes, "
