@@ -186,6 +186,37 @@ TEST(CommandLine, OpenBlasFallingBackToPrescottIsRestartedWithHaswellUnlessASetI
   EXPECT_NE(bad.output.find("no-such-scene.toml"), std::string::npos) << bad.output;
 }
 
+TEST(CommandLine, UnderValgrindRockddDoesNotRestartItself) {
+  // An exec leaves valgrind, and tools/bench-track's callgrind counts would stop at it. rockdd
+  // knows valgrind by the vgpreload library its launcher preloads: a harmless library under
+  // that name stands in for it (so that OpenBLAS, run natively, falls back as it does here),
+  // then valgrind itself runs rockdd to its end.
+  test::TempDir tmp;
+  const std::filesystem::path fake = tmp.path() / "vgpreload_stand_in.so";
+  std::filesystem::create_symlink("/lib/x86_64-linux-gnu/libm.so.6", fake);
+  const auto cores = [](const std::string& output) {
+    std::size_t count = 0;
+    for (std::size_t at = output.find("Core: "); at != std::string::npos;
+         at = output.find("Core: ", at + 1))
+      ++count;
+    return count;
+  };
+  const test::Invocation stand_in =
+      test::run_shell("env -u OPENBLAS_CORETYPE OPENBLAS_VERBOSE=2 LD_PRELOAD='" + fake.string() +
+                      "' '" + ROCKDD_BINARY + "' --version 2>&1");
+  EXPECT_EQ(stand_in.exit_code, 0) << stand_in.output;
+  EXPECT_EQ(cores(stand_in.output), 1U) << stand_in.output;
+
+  if (test::run_shell("command -v valgrind >/dev/null").exit_code != 0)
+    GTEST_SKIP() << "valgrind is not installed";
+  const test::Invocation run =
+      test::run_shell("env -u OPENBLAS_CORETYPE OPENBLAS_VERBOSE=2 valgrind --tool=none -q '" +
+                      std::string(ROCKDD_BINARY) + "' --version 2>&1");
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_NE(run.output.find("rockdd "), std::string::npos) << run.output;
+  EXPECT_EQ(cores(run.output), 1U) << run.output;
+}
+
 TEST(CommandLine, AStoredOrderingGivesBitwiseTheResultsOfComputingIt) {
   // The fill-reducing ordering is kept beside the cached mesh: a run that reads it (hit)
   // writes bitwise the files of one that computed it (miss) and of one without a cache; a

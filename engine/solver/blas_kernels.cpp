@@ -6,6 +6,7 @@
 #include <array>
 #include <cctype>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <system_error>
 
@@ -48,8 +49,20 @@ std::string better_blas_kernel_set(std::string_view running, CpuVectorFeatures c
   return older ? std::string("Haswell") : std::string();
 }
 
+namespace {
+
+/// Whether this process runs under valgrind, whose launcher preloads its vgpreload libraries:
+/// an exec there leaves valgrind (without --trace-children), and callgrind's counts
+/// (tools/bench-track) would stop at the restart.
+bool under_valgrind() {
+  const char* preload = std::getenv("LD_PRELOAD");
+  return preload != nullptr && std::strstr(preload, "vgpreload") != nullptr;
+}
+
+}  // namespace
+
 void restart_with_better_blas_kernels(char** argv) {
-  if (std::getenv(kBlasKernelSetVariable) != nullptr) return;
+  if (std::getenv(kBlasKernelSetVariable) != nullptr || under_valgrind()) return;
   const std::string better = better_blas_kernel_set(blas_kernel_set(), cpu_vector_features());
   if (better.empty()) return;
   // The executable's own path rather than /proc/self/exe, so that ps and top keep its name.

@@ -40,7 +40,7 @@ std::string better_blas_kernel_set(std::string_view running, CpuVectorFeatures c
 /// to better_blas_kernel_set's choice, where there is one. Call it first in main, before any
 /// thread starts. Returns when no restart is wanted or it failed (the program then goes on
 /// with OpenBLAS's choice); a set already in the environment, the user's or an earlier
-/// restart's, is left as it is.
+/// restart's, is left as it is, and so is a process under valgrind.
 void restart_with_better_blas_kernels(char** argv);
 
 }  // namespace rockdd
