@@ -21,7 +21,8 @@
    threshold), +50 % of the median with overlapping samples is "same" (not significant),
    +9.8 % fully separated is "slower"; times in us compare with times in ns; aggregate rows
    (given absurd values here) are not samples.
-6. A benchmark in one run only is listed, not failed; a missing folder and two runs with no
+6. meta.json names the OpenBLAS kernel set (with rockdd in the build), and a comparison of runs
+   on two sets says so; a benchmark in one run only is listed, not failed; a missing folder and two runs with no
    benchmark in common exit 2; `plot` draws the store.
 7. With --rockdd and valgrind installed: `instructions` of cantilever model IV twice; the
    second, against a baseline doctored to 1/1.1 of the first count, must exit 1, and the two
@@ -237,6 +238,9 @@ def main():
     check(len(reps) == 15, f"3 benchmarks x 5 repetitions stored (got {len(reps)} rows)")
     check(meta.get("repetitions") == 5 and meta.get("machine") == bt.machine_key(),
           "meta.json records the repetitions and the machine")
+    if os.access(os.path.join(args.build, "bin", "rockdd"), os.X_OK):
+        check(bool(meta.get("blas_kernels")),
+              f"meta.json records the OpenBLAS kernel set (got {meta.get('blas_kernels')!r})")
 
     same = os.path.join(here, "same")
     shutil.copytree(first, same)
@@ -285,6 +289,19 @@ def main():
           f"exactly {sorted(SPED_UP)} faster ({v})")
 
     check_synthetic(args, here)
+
+    other_kernels = doctored(args, first, "other-kernels", {})
+    meta_path = os.path.join(other_kernels, "meta.json")
+    with open(meta_path) as f:
+        other_meta = json.load(f)
+    other_meta["blas_kernels"] = "Prescott" if meta.get("blas_kernels") != "Prescott" else "Zen"
+    with open(meta_path, "w") as f:
+        json.dump(other_meta, f)
+    rc, out, v = compare(args, first, other_kernels)
+    check(rc == 0 and "different OpenBLAS kernel sets" in out,
+          f"runs on two kernel sets: the note says so (exit {rc})")
+    rc, out, v = compare(args, first, same)
+    check("different OpenBLAS kernel sets" not in out, "one kernel set: no such note")
 
     partial = doctored(args, first, "partial", {}, drop={"BM_WeibullDraw"})
     rc, out, v = compare(args, first, partial)
