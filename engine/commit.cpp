@@ -155,7 +155,8 @@ bool Simulation::detach_fractured_elements() {
     fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness,
                                    scene_.fracture.loose_part_support);
   if (analysis_ != Analysis::dynamic && corotational_) turn_loose_block_frames();
-  auto contact = std::make_unique<ContactStage>(scene_, model_, analysis_, integrator_);
+  // edges_ followed this detachment's node splits: the new blocks' boundary without a sort.
+  auto contact = std::make_unique<ContactStage>(scene_, model_, edges_, analysis_, integrator_);
   if (contact_) contact->carry_contacts_from(*contact_, committed_.contacts);
   contact_ = std::move(contact);
   rebuild_layout();

@@ -7,6 +7,7 @@
 #include <numeric>
 #include <random>
 
+#include "engine/contact/contact_detection.hpp"
 #include "engine/damage/damage_stage.hpp"
 #include "engine/damage/detachment.hpp"
 #include "support/scene_run.hpp"
@@ -192,6 +193,30 @@ TEST(Fracture, SplittingConservesMassAndMomentum) {
     for (int c = 0; c < 2; ++c) EXPECT_EQ(model.X[2 * n + c], model.X[2 * d.node_origin[n] + c]);
   // Detaching again with nothing new changes nothing.
   EXPECT_EQ(detach_damaged_elements(model, threshold, detached).detached, 0);
+}
+
+TEST(Fracture, TheKeptAdjacencyGivesTheContactBoundaryOfTheSplitMesh) {
+  // The simulation keeps one edge adjacency through its detachments (drop_split_edges) and
+  // builds each new contact stage's block boundary from it: the boundary must be the one a
+  // fresh sort of the split connectivity gives, edge for edge, after every detachment.
+  test::TempDir dir;
+  const Scene scene = test::scene_from_text(bar_in_tension(""), dir.path());
+  Model model = build_scene_model(scene);
+  EdgeAdjacency kept = build_edge_adjacency(model.conn, "test");
+  std::vector<std::uint8_t> detached;
+  const std::vector<double> threshold(static_cast<std::size_t>(model.num_elements()), 0.0);
+  for (const std::vector<std::int32_t>& wave :
+       {std::vector<std::int32_t>{37, 120, 255}, std::vector<std::int32_t>{36, 38, 121, 300}}) {
+    for (const std::int32_t e : wave) model.damage[e] = 0.9;
+    ASSERT_GT(detach_damaged_elements(model, threshold, detached, kept).detached, 0);
+    const BlockBoundary fresh = extract_block_boundary(model);
+    const BlockBoundary from_kept = extract_block_boundary(model, kept);
+    EXPECT_EQ(from_kept.edge_nodes, fresh.edge_nodes);
+    EXPECT_EQ(from_kept.edge_element, fresh.edge_element);
+    EXPECT_EQ(from_kept.edge_block, fresh.edge_block);
+    EXPECT_EQ(from_kept.vertices, fresh.vertices);
+    EXPECT_GT(fresh.edge_element.size(), 0U);
+  }
 }
 
 }  // namespace

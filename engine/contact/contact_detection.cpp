@@ -162,7 +162,10 @@ bool has_face_along(std::size_t v, const double direction[2], const Normals& nor
 }  // namespace
 
 BlockBoundary extract_block_boundary(const Model& model) {
-  const EdgeAdjacency adjacency = build_edge_adjacency(model.conn, "model");
+  return extract_block_boundary(model, build_edge_adjacency(model.conn, "model"));
+}
+
+BlockBoundary extract_block_boundary(const Model& model, const EdgeAdjacency& adjacency) {
   BlockBoundary boundary;
   for (std::int32_t e = 0; e < model.num_elements(); ++e)
     for (int k = 0; k < 3; ++k) {

@@ -5,6 +5,7 @@
 #include <span>
 #include <vector>
 
+#include "engine/model/edge_adjacency.hpp"
 #include "engine/model/model.hpp"
 
 namespace rockdd {
@@ -36,6 +37,10 @@ struct ContactRules {
 /// another block). `intact` is not needed: blocks own their nodes, so a shared edge across
 /// two blocks never exists in the connectivity.
 BlockBoundary extract_block_boundary(const Model& model);
+
+/// The same, from the edge adjacency of model.conn that the caller already keeps (the
+/// fracture's, which follows every node split): no sort of the edges.
+BlockBoundary extract_block_boundary(const Model& model, const EdgeAdjacency& adjacency);
 
 /// Every (vertex, edge) pair of different blocks allowed by `rules` with the vertex within
 /// `reach` of the edge segment at current positions (`positions`, 2 per node). For each

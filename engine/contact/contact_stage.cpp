@@ -82,7 +82,11 @@ double contact_force_scale(const Model& model, std::span<const double> reaction,
 
 ContactStage::ContactStage(const Scene& scene, const Model& model, Analysis analysis,
                            Integrator integrator)
-    : boundary_(extract_block_boundary(model)),
+    : ContactStage(scene, model, build_edge_adjacency(model.conn, "model"), analysis, integrator) {}
+
+ContactStage::ContactStage(const Scene& scene, const Model& model, const EdgeAdjacency& edges,
+                           Analysis analysis, Integrator integrator)
+    : boundary_(extract_block_boundary(model, edges)),
       rules_(contact_rules(scene, model, boundary_, analysis)),
       energy_consistent_(analysis == Analysis::dynamic && integrator == Integrator::newmark) {}
 

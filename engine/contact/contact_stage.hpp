@@ -36,6 +36,9 @@ class ContactStage {
   /// contact's normal force as its mean over the step (kernels::mean_normal_force), so that
   /// a spring that opens or closes within a step makes no energy.
   ContactStage(const Scene& scene, const Model& model, Analysis analysis, Integrator integrator);
+  /// The same, with the edge adjacency of model.conn that the caller keeps.
+  ContactStage(const Scene& scene, const Model& model, const EdgeAdjacency& edges,
+               Analysis analysis, Integrator integrator);
 
   /// The sliding springs and forgiven overlaps of steps without inertia, or neither with it
   /// (a run that goes on with inertia: fracture.snap_back = "dynamic"), and the mean normal
