@@ -284,7 +284,7 @@ std::vector<ContactCandidate> detect_contacts(const BlockBoundary& boundary,
             normal[0] * normals.vertex[2 * index] + normal[1] * normals.vertex[2 * index + 1];
         if (!(facing < -kFacingMargin)) continue;
         const std::int32_t vertex_body = rules.block_body[vertex_block];
-        if (!rules.allowed[static_cast<std::size_t>(vertex_body * rules.num_bodies + edge_body)])
+        if (!rules.allowed[static_cast<std::size_t>(vertex_body) * rules.num_bodies + edge_body])
           continue;
         const double p[2] = {tree_xy[2 * t], tree_xy[2 * t + 1]};
         if (std::abs((p[0] - a[0]) * e[1] - (p[1] - a[1]) * e[0]) > off_line_limit) continue;
