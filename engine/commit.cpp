@@ -78,9 +78,10 @@ void Simulation::commit_step(double dt, const StepControl& control) {
   for (std::size_t d = 0; d < num_dofs; ++d) {
     trial_.reaction[d] = constraint_force(bc_.prescribed[d], trial_.f_int[d], trial_.f_contact[d],
                                           trial_.restraint_force[d], trial_.f_ext[d]);
-    committed_.residual[d] = bc_.prescribed[d] ? 0.0
-                                               : trial_.f_ext[d] - trial_.f_int[d] -
-                                                     trial_.f_contact[d] - trial_.restraint_force[d];
+    committed_.residual[d] =
+        bc_.prescribed[d]
+            ? 0.0
+            : trial_.f_ext[d] - trial_.f_int[d] - trial_.f_contact[d] - trial_.restraint_force[d];
     const double reaction = first_reaction ? trial_.reaction_first[d] : trial_.reaction[d];
     work += 0.5 * (committed_.f_ext[d] + committed_.reaction[d] + trial_.f_ext[d] + reaction) *
             trial_.du[d];
@@ -106,7 +107,7 @@ void Simulation::record_committed_state(bool detached) {
   if (trial_.restraint_grown && !detached) {
     // Supports of parts that the step's cascade cut loose end with it (a detachment would have
     // rebuilt the restraint already): the restraint of the committed parts holds again.
-    fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness,
+    fragments_ = FragmentRestraint(model_, current_edges(), bc_, scene_.fracture.fragment_stiffness,
                                    scene_.fracture.loose_part_support);
     system_->invalidate();
   }
@@ -115,13 +116,18 @@ void Simulation::record_committed_state(bool detached) {
   committed_.restraint = fragments_;
 }
 
+const EdgeAdjacency& Simulation::current_edges() {
+  if (edges_.neighbor.size() != model_.conn.size())
+    edges_ = build_edge_adjacency(model_.conn, "fracture");
+  return edges_;
+}
+
 bool Simulation::detach_fractured_elements() {
   ScopedTimer timer(report_.timers.detachment);
   std::vector<double> threshold(static_cast<std::size_t>(model_.num_elements()));
   for (std::int32_t e = 0; e < model_.num_elements(); ++e)
     threshold[e] = damage_->detach_threshold(model_, e);
-  if (edges_.neighbor.size() != model_.conn.size())
-    edges_ = build_edge_adjacency(model_.conn, "fracture");
+  current_edges();
   const Detachment detachment = detach_damaged_elements(model_, threshold, detached_, edges_);
   if (detachment.detached == 0) return false;
   report_.counters.detached_elements += detachment.detached;
@@ -152,7 +158,7 @@ bool Simulation::detach_fractured_elements() {
   probes_ = std::move(probes);
   coloring_ = color_elements(model_.conn, model_.num_nodes());
   if (analysis_ != Analysis::dynamic)
-    fragments_ = FragmentRestraint(model_, bc_, scene_.fracture.fragment_stiffness,
+    fragments_ = FragmentRestraint(model_, edges_, bc_, scene_.fracture.fragment_stiffness,
                                    scene_.fracture.loose_part_support);
   if (analysis_ != Analysis::dynamic && corotational_) turn_loose_block_frames();
   // edges_ followed this detachment's node splits: the new blocks' boundary without a sort.
@@ -188,9 +194,10 @@ void Simulation::recompute_committed_forces() {
     committed_.reaction[d] =
         constraint_force(bc_.prescribed[d], trial_.f_int[d], trial_.f_contact[d],
                          trial_.restraint_force[d], committed_.f_ext[d]);
-    committed_.residual[d] = bc_.prescribed[d] ? 0.0
-                                               : committed_.f_ext[d] - trial_.f_int[d] -
-                                                     trial_.f_contact[d] - trial_.restraint_force[d];
+    committed_.residual[d] = bc_.prescribed[d]
+                                 ? 0.0
+                                 : committed_.f_ext[d] - trial_.f_int[d] - trial_.f_contact[d] -
+                                       trial_.restraint_force[d];
   }
 }
 
@@ -260,7 +267,8 @@ EnergyBalance Simulation::energy() const {
   // the impulse that set it going is booked either).
   if (analysis_ == Analysis::dynamic)
     for (std::size_t d = 0; d < model_.v.size(); ++d)
-      if (!bc_.prescribed[d]) e.kinetic += 0.5 * model_.node_mass[d / 2] * model_.v[d] * model_.v[d];
+      if (!bc_.prescribed[d])
+        e.kinetic += 0.5 * model_.node_mass[d / 2] * model_.v[d] * model_.v[d];
   e.strain = strain_energy(model_, model_.strain, model_.stress) +
              (contact_ ? committed_.contact_spring_energy : 0.0);
   const EnergyAccount& account = committed_.energy;

@@ -162,7 +162,7 @@ void Simulation::hold_parts_cut_loose() {
       trial_.changed_elements.begin(), trial_.changed_elements.end(),
       [&](std::int32_t e) { return trial_.damage_before[e] < 1.0 && model_.damage[e] >= 1.0; });
   if (!broke) return;
-  FragmentRestraint held(model_, bc_, scene_.fracture.fragment_stiffness,
+  FragmentRestraint held(model_, current_edges(), bc_, scene_.fracture.fragment_stiffness,
                          scene_.fracture.loose_part_support);
   if (held.same_springs(fragments_)) return;
   held.anchor_new_springs(fragments_, trial_.du);

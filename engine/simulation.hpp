@@ -206,6 +206,9 @@ class Simulation {
   /// After a committed step: damaged elements become blocks, and what hangs on the nodes is
   /// rebuilt for the new topology. True when any element detached.
   bool detach_fractured_elements();
+  /// The edge adjacency of model_.conn (edges_): built on first use, then kept through the
+  /// detachments' node splits.
+  const EdgeAdjacency& current_edges();
   /// Without inertia, after nodes split: the blocks no boundary holds take their current
   /// rotation as their stiffness frame. A stressed piece cut loose with a stale frame meets,
   /// in the linear solve, a moment (its stress times its turn so far) that only the weak

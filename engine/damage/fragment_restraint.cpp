@@ -12,9 +12,9 @@ namespace rockdd {
 namespace {
 
 /// Parts: the elements that are not fully broken (w < 1), joined across the edges they share
-/// (found through the elements around each node: no sort). part[e] numbers them in element
-/// order; -1 for a broken element.
-std::vector<std::int32_t> intact_parts(const Model& model, const NodeIncidence& incidence,
+/// (`edges`, the adjacency of model.conn). part[e] numbers them in element order; -1 for a
+/// broken element.
+std::vector<std::int32_t> intact_parts(const Model& model, const EdgeAdjacency& edges,
                                        std::int32_t& num_parts) {
   const auto num_elements = static_cast<std::size_t>(model.num_elements());
   DisjointSets parts(num_elements);
@@ -22,14 +22,9 @@ std::vector<std::int32_t> intact_parts(const Model& model, const NodeIncidence& 
   for (std::size_t e = 0; e < num_elements; ++e) {
     if (!intact(static_cast<std::int32_t>(e))) continue;
     for (int k = 0; k < 3; ++k) {
-      const std::int32_t a = model.conn[3 * e + k], b = model.conn[3 * e + (k + 1) % 3];
-      for (std::int32_t i = incidence.offset[a]; i < incidence.offset[a + 1]; ++i) {
-        const std::int32_t other = incidence.element[i];
-        if (other <= static_cast<std::int32_t>(e) || !intact(other)) continue;
-        const std::int32_t* corner = &model.conn[3 * static_cast<std::size_t>(other)];
-        if (corner[0] != b && corner[1] != b && corner[2] != b) continue;
-        parts.join(static_cast<std::int32_t>(e), other);
-      }
+      const std::int32_t other = edges.neighbor[3 * e + k];
+      if (other <= static_cast<std::int32_t>(e) || !intact(other)) continue;
+      parts.join(static_cast<std::int32_t>(e), other);
     }
   }
   std::vector<std::int32_t> part(num_elements, -1);
@@ -125,10 +120,16 @@ void hold_rigid_modes(const Model& model, const BoundaryConditions& bc,
 }  // namespace
 
 FragmentRestraint::FragmentRestraint(const Model& model, const BoundaryConditions& bc,
-                                     double fraction, double support) {
+                                     double fraction, double support)
+    : FragmentRestraint(model, build_edge_adjacency(model.conn, "restraint"), bc, fraction,
+                        support) {}
+
+FragmentRestraint::FragmentRestraint(const Model& model, const EdgeAdjacency& edges,
+                                     const BoundaryConditions& bc, double fraction,
+                                     double support) {
   const NodeIncidence incidence = build_node_incidence(model.conn, model.num_nodes());
   std::int32_t num_parts = 0;
-  const std::vector<std::int32_t> part = intact_parts(model, incidence, num_parts);
+  const std::vector<std::int32_t> part = intact_parts(model, edges, num_parts);
   const std::vector<GroupNode> members = part_members(incidence, part, model.num_nodes());
   const auto num_nodes = static_cast<std::size_t>(model.num_nodes());
   // Held parts and nodes: a part the prescribed dofs hold, then, until nothing changes, a part

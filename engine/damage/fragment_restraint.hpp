@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "engine/loading/boundary_conditions.hpp"
+#include "engine/model/edge_adjacency.hpp"
 #include "engine/model/model.hpp"
 
 namespace rockdd {
@@ -30,7 +31,10 @@ class FragmentRestraint {
   /// loose; a node that only broken elements touch is a part alone. Deterministic.
   /// A part of a held block that broken elements cut loose inside the step instead gets a
   /// statically determinate support: springs of `support` x E0 t on as few of its dofs as hold
-  /// its free rigid modes.
+  /// its free rigid modes. `edges` is the edge adjacency of model.conn.
+  FragmentRestraint(const Model& model, const EdgeAdjacency& edges, const BoundaryConditions& bc,
+                    double fraction, double support = 1.0);
+  /// The same, with the edge adjacency built here.
   FragmentRestraint(const Model& model, const BoundaryConditions& bc, double fraction,
                     double support = 1.0);
 
