@@ -4,7 +4,7 @@
 //    factorized 5x slower in library and Python callers than in `rockdd run` (the paper's UCS
 //    to 20 % softening: 25.3 s of factorization against 5.3 s).
 //  - SuiteSparse_time (engine/solver/cholmod_statistics_clock): CHOLMOD's statistics clock,
-//    2.5 % of a compression realization.
+//    2.3 % of perf's samples in a compression realization.
 #include <dlfcn.h>
 
 #include <cstdio>

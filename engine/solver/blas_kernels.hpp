@@ -5,7 +5,7 @@
 // OpenBLAS picks its kernel set once, as it loads, from the CPU's vendor, family and model. A
 // CPU it does not know by model (a virtual machine reporting "Intel(R) Xeon(R) Processor"
 // with AVX2, FMA and AVX-512) gets its oldest x86-64 set, Prescott (SSE3), whose dgemm and
-// dtrsm ran CHOLMOD's factorization of 10^5 dofs 1.5x slower than the Haswell set that the
+// dtrsm ran CHOLMOD's factorization of 10^5 dofs 1.3-1.5x slower than the Haswell set that the
 // CPU's features allow (docs/performance.md, "OpenBLAS's kernels on a CPU it cannot name").
 // The set can only be chosen before OpenBLAS loads, through its own environment variable
 // OPENBLAS_CORETYPE; `rockdd` and the benchmarks therefore start themselves again with it
