@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "engine/assembly/internal_force.hpp"
+#include "engine/assembly/modulus_change.hpp"
 #include "engine/common/errors.hpp"
 #include "engine/common/timers.hpp"
 #include "engine/contact/contact_stage.hpp"
@@ -41,11 +42,7 @@ void Simulation::commit_step(double dt, const StepControl& control) {
                             committed_.acceleration);
   }
   for (std::size_t d = 0; d < num_dofs; ++d) model_.u[d] += trial_.du[d];
-  {
-    ScopedTimer timer(report_.timers.assembly);
-    compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, trial_.f_int,
-                           corotational_);
-  }
+  internal_force_at_commit();
   if (contact_) {
     ScopedTimer timer(report_.timers.contact);
     for (std::size_t d = 0; d < num_dofs; ++d) trial_.positions[d] = model_.X[d] + model_.u[d];
@@ -98,6 +95,38 @@ void Simulation::commit_step(double dt, const StepControl& control) {
   committed_.load_factor = trial_.load_factor;
   std::swap(committed_.f_ext, trial_.f_ext);
   std::swap(committed_.reaction, trial_.reaction);
+}
+
+void Simulation::internal_force_at_commit() {
+  ScopedTimer timer(report_.timers.assembly);
+  const std::size_t element_values = 6 * static_cast<std::size_t>(model_.num_elements());
+  // The last solve's strains were taken at this displacement, before the damage pass after it
+  // (at most one) dropped some moduli: only the elements that pass changed, and those a
+  // block's rotation moved since, are computed again, by the same kernel, and the sum runs in
+  // the same order, so f_int is bitwise what a whole pass gives.
+  const int passes_since = trial_.damage_passes - trial_.solution_passes;
+  if (trial_.solution_passes < 0 || passes_since > 1 ||
+      trial_.solution_element_force.size() != element_values) {
+    committed_.element_force.resize(element_values);
+    compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, trial_.f_int,
+                           corotational_, committed_.element_force);
+    return;
+  }
+  elements_moved_between(model_, trial_.u_solution, model_.u, trial_.moved_nodes,
+                         trial_.moved_elements);
+  if (passes_since == 1) {
+    std::vector<std::int32_t>& stale = trial_.moved_elements;
+    changed_elements(model_, trial_.damage_before, trial_.changed_elements);
+    const auto moved = static_cast<std::ptrdiff_t>(stale.size());
+    stale.insert(stale.end(), trial_.changed_elements.begin(), trial_.changed_elements.end());
+    std::inplace_merge(stale.begin(), stale.begin() + moved, stale.end());
+    stale.erase(std::unique(stale.begin(), stale.end()), stale.end());
+  }
+  refresh_element_forces(model_, model_.u, trial_.moved_elements, trial_.solution_element_force,
+                         corotational_, model_.strain, model_.stress);
+  sum_element_forces(model_, coloring_, trial_.solution_element_force, trial_.f_int);
+  std::swap(committed_.element_force, trial_.solution_element_force);
+  trial_.solution_passes = -1;  // its forces now belong to the committed state
 }
 
 void Simulation::record_committed_state(bool detached) {
@@ -183,8 +212,9 @@ void Simulation::recompute_committed_forces() {
   // the constraint would do work with a reaction it no longer has, and two copies would
   // count one node's weight twice. Both are taken anew at the committed state.
   const std::size_t num_dofs = model_.X.size();
+  committed_.element_force.resize(6 * static_cast<std::size_t>(model_.num_elements()));
   compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, trial_.f_int,
-                         corotational_);
+                         corotational_, committed_.element_force);
   std::fill(trial_.f_contact.begin(), trial_.f_contact.end(), 0.0);
   for (std::size_t d = 0; d < num_dofs; ++d) trial_.positions[d] = model_.X[d] + model_.u[d];
   contact_->add_committed_forces(trial_.positions, trial_.f_contact);

@@ -31,9 +31,13 @@ void Simulation::strain_at_result() {
   // The internal-force pass, as at a step's start: assembly's work, not the damage laws'.
   ScopedTimer timer(report_.timers.assembly);
   const std::size_t num_dofs = model_.X.size();
-  for (std::size_t d = 0; d < num_dofs; ++d) trial_.positions[d] = model_.u[d] + trial_.du[d];
-  compute_internal_force(model_, coloring_, trial_.positions, model_.strain, model_.stress,
-                         trial_.damage_force, corotational_);
+  for (std::size_t d = 0; d < num_dofs; ++d) trial_.u_solution[d] = model_.u[d] + trial_.du[d];
+  // Each element's force is kept: the commit, at the same displacement, recomputes only the
+  // elements whose modulus the last pass dropped (and any a block's rotation moved).
+  trial_.solution_element_force.resize(6 * static_cast<std::size_t>(model_.num_elements()));
+  compute_internal_force(model_, coloring_, trial_.u_solution, model_.strain, model_.stress,
+                         trial_.damage_force, corotational_, trial_.solution_element_force);
+  trial_.solution_passes = trial_.damage_passes;
 }
 
 DamageChange Simulation::evaluate_damage(bool start_onsets) {

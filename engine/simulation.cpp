@@ -149,8 +149,9 @@ RunResult Simulation::run(const RunOptions& options) {
   committed_.load_factor = load_factor(analysis_, 0.0, end_time);
   for (std::size_t d = 0; d < model_.X.size(); ++d)
     committed_.f_ext[d] = committed_.load_factor * reference_loads_[d];
+  committed_.element_force.resize(6 * static_cast<std::size_t>(model_.num_elements()));
   compute_internal_force(model_, coloring_, model_.u, model_.strain, model_.stress, trial_.f_int,
-                         corotational_);
+                         corotational_, committed_.element_force);
   for (std::size_t d = 0; d < model_.X.size(); ++d)
     committed_.residual[d] = bc_.prescribed[d] ? 0.0 : committed_.f_ext[d] - trial_.f_int[d];
   balance_acceleration();  // no contact force yet: f_contact is zero
@@ -360,9 +361,24 @@ Simulation::Attempt Simulation::attempt_step(long step, int retries, double time
   {
     ScopedTimer timer(report_.timers.assembly);
     // Each element's force is kept: a damage pass recomputes only the elements it changed.
-    trial_.trial_element_force.resize(6 * static_cast<std::size_t>(model_.num_elements()));
-    compute_internal_force(model_, coloring_, trial_.u_trial, model_.strain, model_.stress,
-                           trial_.f_int, corotational_, trial_.trial_element_force);
+    // The committed state's forces hold at u for every element the prescribed increment does
+    // not move (the attempt starts from its strain and stress): only the others are computed,
+    // by the same kernel, and the sum runs in the same order, so f_int is bitwise what a whole
+    // pass gives.
+    const std::size_t element_values = 6 * static_cast<std::size_t>(model_.num_elements());
+    if (committed_.element_force.size() == element_values) {
+      trial_.trial_element_force = committed_.element_force;
+      elements_moved_between(model_, model_.u, trial_.u_trial, trial_.moved_nodes,
+                             trial_.moved_elements);
+      refresh_element_forces(model_, trial_.u_trial, trial_.moved_elements,
+                             trial_.trial_element_force, corotational_, model_.strain,
+                             model_.stress);
+      sum_element_forces(model_, coloring_, trial_.trial_element_force, trial_.f_int);
+    } else {
+      trial_.trial_element_force.resize(element_values);
+      compute_internal_force(model_, coloring_, trial_.u_trial, model_.strain, model_.stress,
+                             trial_.f_int, corotational_, trial_.trial_element_force);
+    }
     for (std::size_t d = 0; d < num_dofs; ++d) trial_.du[d] = trial_.u_trial[d] - model_.u[d];
     fragments_.forces(trial_.du, trial_.restraint_force);
   }

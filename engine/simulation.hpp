@@ -200,6 +200,8 @@ class Simulation {
   // The commit and what follows it (commit.cpp).
   /// Velocity, rotations of free blocks, u, stresses, contacts, reactions and work.
   void commit_step(double dt, const StepControl& control);
+  /// f_int, strains and stresses at the committed displacement, and each element's force.
+  void internal_force_at_commit();
   /// The committed state taken from the model, the trial and the restraint after the step and
   /// its fracture (`detached`: elements detached and everything on the nodes was rebuilt).
   void record_committed_state(bool detached);

@@ -133,12 +133,32 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
 
 void refresh_element_forces(const Model& model, std::span<const double> u,
                             std::span<const std::int32_t> elements, std::span<double> element_force,
-                            bool corotational) {
+                            bool corotational, std::span<double> strain, std::span<double> stress) {
   const kernels::PlaneKind plane = model.plane;
+  const bool keep_state = !strain.empty() && !stress.empty();
   for (const std::int32_t e : elements) {
+    const auto at = static_cast<std::size_t>(e);
     double eps[3], sig[3];
-    element_internal_force(model, e, u, plane, corotational, eps, sig,
-                           &element_force[6 * static_cast<std::size_t>(e)]);
+    element_internal_force(model, e, u, plane, corotational, eps, sig, &element_force[6 * at]);
+    if (keep_state)
+      for (int k = 0; k < 3; ++k) {
+        strain[3 * at + k] = eps[k];
+        stress[3 * at + k] = sig[k];
+      }
+  }
+}
+
+void elements_moved_between(const Model& model, std::span<const double> u_from,
+                            std::span<const double> u, std::vector<std::uint8_t>& node_moved,
+                            std::vector<std::int32_t>& elements) {
+  const auto num_nodes = static_cast<std::size_t>(model.num_nodes());
+  node_moved.assign(num_nodes, 0);
+  for (std::size_t n = 0; n < num_nodes; ++n)
+    node_moved[n] = u[2 * n] != u_from[2 * n] || u[2 * n + 1] != u_from[2 * n + 1] ? 1 : 0;
+  elements.clear();
+  for (std::int32_t e = 0; e < model.num_elements(); ++e) {
+    const std::int32_t* node = &model.conn[3 * static_cast<std::size_t>(e)];
+    if (node_moved[node[0]] | node_moved[node[1]] | node_moved[node[2]]) elements.push_back(e);
   }
 }
 

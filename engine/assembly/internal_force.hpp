@@ -2,7 +2,9 @@
 // Stress recovery and the nodal internal force it implies, f_int = sum R t A B^T sigma', with
 // the strain measured in each element's co-rotated frame (kernels/corotation.hpp), and the
 // element frames that the stiffness uses.
+#include <cstdint>
 #include <span>
+#include <vector>
 
 #include "engine/assembly/element_coloring.hpp"
 #include "engine/model/model.hpp"
@@ -20,10 +22,18 @@ void compute_internal_force(const Model& model, const ElementColoring& coloring,
                             bool corotational = false, std::span<double> element_force = {});
 
 /// Recomputes the nodal force of `elements` at displacement `u` in `element_force` (6 per
-/// element): after a damage pass, only the elements whose modulus changed.
+/// element): after a damage pass, only the elements whose modulus changed. With `strain` and
+/// `stress` (3 per element), theirs too. Bitwise what compute_internal_force gives them.
 void refresh_element_forces(const Model& model, std::span<const double> u,
                             std::span<const std::int32_t> elements, std::span<double> element_force,
-                            bool corotational);
+                            bool corotational, std::span<double> strain = {},
+                            std::span<double> stress = {});
+
+/// The elements with a node whose displacement differs between `u` and `u_from`, bit for bit:
+/// those whose force a pass at `u` must recompute when it starts from one at `u_from`.
+void elements_moved_between(const Model& model, std::span<const double> u_from,
+                            std::span<const double> u, std::vector<std::uint8_t>& node_moved,
+                            std::vector<std::int32_t>& elements);
 
 /// f_int from the elements' nodal forces, summed in the colouring's order: bitwise what
 /// compute_internal_force gives for the same element forces, for any thread count.

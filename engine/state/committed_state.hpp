@@ -19,6 +19,9 @@ namespace rockdd {
 struct CommittedState {
   // Per element (strain and stress 3 each): at the committed displacement.
   std::vector<double> damage, strain, stress;
+  // Per element (6 each): its nodal force at the committed displacement, from which the next
+  // attempt's start recomputes only the elements the prescribed increment moves.
+  std::vector<double> element_force;
   // Per dof: the loads and the constraints' force, and Newmark's acceleration (0 without
   // inertia).
   std::vector<double> f_ext, reaction, acceleration;

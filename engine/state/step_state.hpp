@@ -38,6 +38,10 @@ struct StepState {
   std::vector<double> trial_element_force;     // per element (6 each): its force at u_trial
   std::vector<double> damage_before;           // per element: w before the last damage pass
   std::vector<std::int32_t> changed_elements;  // scratch: elements a damage pass changed
+  std::vector<std::uint8_t> moved_nodes;       // scratch: per node, moved since a known pass
+  std::vector<std::int32_t> moved_elements;    // scratch: elements with such a node
+  std::vector<double> u_solution;              // u + du where the last solve's strains were taken
+  std::vector<double> solution_element_force;  // per element (6 each): its force there
 
   double time = 0.0;                        // at the end of the step attempted
   double load_factor = 0.0;                 // of the step attempted
@@ -45,6 +49,7 @@ struct StepState {
   std::optional<FirstDamage> first_damage;  // the attempt's, when the run had none yet
   std::vector<EventState> events;           // run events of its damage passes
   int damage_passes = 0;                    // damage passes of the attempt so far
+  int solution_passes = -1;  // damage_passes when u_solution's forces were taken; -1: none yet
   bool restraint_grown = false;     // its cascade cut parts loose and the restraint held them
   bool end_out_of_balance = false;  // its last pass dropped moduli and was not re-solved
   bool calls_for_inertia = false;   // its cascade is to go on with inertia (snap_back)
