@@ -269,6 +269,34 @@ TEST(Assembly, BitwiseIdenticalForOneAndTwoThreads) {
   EXPECT_EQ(std::memcmp(f_one.data(), f_two.data(), f_one.size() * sizeof(double)), 0);
 }
 
+// The solve check's residual r = b - A x from the upper triangle (engine/assembly/
+// sparsity_pattern.hpp): equal to the dense product to round-off, and bit for bit to the
+// entry-by-entry form it replaced (the check's decisions must not move with its speed).
+TEST(Assembly, SymmetricResidualIsTheEntryByEntryResidual) {
+  const Assembled a = assemble(kRectangle, false);
+  const SparsityPattern& pattern = a.layout.pattern;
+  const auto n = static_cast<std::size_t>(pattern.n);
+  std::vector<double> x(n), b(n), r(n), reference(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    x[i] = 1e-4 * std::sin(0.7 * static_cast<double>(i));
+    b[i] = 1e5 * std::cos(0.3 * static_cast<double>(i));
+  }
+  symmetric_residual(pattern, a.values, x, b, r);
+  reference = b;
+  for (std::int32_t j = 0; j < pattern.n; ++j)
+    for (std::int32_t p = pattern.col_ptr[j]; p < pattern.col_ptr[j + 1]; ++p) {
+      const std::int32_t i = pattern.row_idx[p];
+      reference[i] -= a.values[p] * x[j];
+      if (i != j) reference[j] -= a.values[p] * x[i];
+    }
+  EXPECT_EQ(std::memcmp(r.data(), reference.data(), n * sizeof(double)), 0);
+  const Eigen::MatrixXd k = dense(pattern, a.values);
+  const Eigen::VectorXd ax = k * Eigen::Map<const Eigen::VectorXd>(x.data(), pattern.n);
+  double scale = 0.0;
+  for (std::size_t i = 0; i < n; ++i) scale = std::max(scale, std::abs(b[i]) + std::abs(ax(i)));
+  for (std::size_t i = 0; i < n; ++i) EXPECT_NEAR(r[i], b[i] - ax(i), 1e-12 * scale);
+}
+
 // A pass that starts from a known one (the committed state's, or the last solve's) recomputes
 // only the elements a displacement change moved or a damage pass changed, and sums all of
 // them: its f_int, strains and stresses must be those of a whole pass bit for bit, since the
