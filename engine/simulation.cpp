@@ -123,7 +123,11 @@ void Simulation::rebuild_layout() {
     const std::vector<std::int32_t> triples = contact_->triples();
     conn.insert(conn.end(), triples.begin(), triples.end());
   }
-  system_->rebuild(conn, model_.num_nodes(), bc_.equation, bc_.num_equations, contact_ != nullptr);
+  // A static analysis without damage or contact factorizes once: its ordering should cost
+  // little next to that one factorization.
+  const bool factorized_once = analysis_ == Analysis::static_ && !damage_ && !contact_;
+  system_->rebuild(conn, model_.num_nodes(), bc_.equation, bc_.num_equations, contact_ != nullptr,
+                   {model_.X, factorized_once ? OrderingEffort::quick : OrderingEffort::thorough});
 }
 
 void Simulation::prepare_system(double mass_coefficient) {

@@ -302,6 +302,29 @@ TEST(CholmodSolver, EveryOrderingSolvesTheSameSystemToRoundOff) {
   }
 }
 
+TEST(CholmodSolver, TheDissectionByCoordinatesSolvesToRoundOff) {
+  // The same bounds as every other ordering above; it needs each equation's node position.
+  std::mt19937 rng(17);
+  const int nx = 30, ny = 25;
+  const SymmetricMatrix a = grid_matrix(nx, ny, rng);
+  SparsityPattern pattern;
+  std::vector<double> values;
+  a.compress(pattern, values);
+  std::vector<double> xy;
+  for (std::int32_t e = 0; e < a.n; ++e)
+    xy.insert(xy.end(), {double(e / 2 % nx), double(e / 2 / nx)});
+  const std::vector<double> b = random_vector(static_cast<std::size_t>(a.n), rng);
+  CholmodSolver solver(FillOrdering::node_geometric);
+  solver.analyze(pattern, xy);
+  solver.factorize(values.data());
+  const std::vector<double> x = solve(solver, b);
+  EXPECT_EQ(solver.stats().ordering, FillOrdering::node_geometric);
+  EXPECT_LT(relative_residual(a, x, b), 1e-12);
+  EXPECT_LT(relative_difference(x, fresh_solve(a, b)), 1e-10);
+  CholmodSolver blind(FillOrdering::node_geometric);
+  EXPECT_THROW(blind.analyze(pattern), std::invalid_argument);  // no coordinates
+}
+
 TEST(CholmodSolver, AnalysisGivenAnEarlierOrderingIsBitwiseThatAnalysis) {
   // analyze_given(permutation() of an earlier analysis) is what a stored ordering replays:
   // the same elimination order, factor size and kept method, and bitwise the same solution,
@@ -373,7 +396,7 @@ TEST(CholmodSolver, TheOrderingKeyNamesStrategyAndLibraries) {
     EXPECT_NE(key.find(part), std::string::npos) << part;
   for (const FillOrdering o :
        {FillOrdering::cholmod, FillOrdering::node_metis, FillOrdering::node_amd, FillOrdering::node,
-        FillOrdering::cholmod_amd})
+        FillOrdering::cholmod_amd, FillOrdering::node_geometric})
     EXPECT_EQ(fill_ordering_from_name(fill_ordering_name(o)), o);
   EXPECT_FALSE(fill_ordering_from_name("metis"));
 }

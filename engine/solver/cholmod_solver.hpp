@@ -43,7 +43,10 @@ class CholmodSolver {
   /// Symbolic analysis (fill-reducing ordering, supernodes) with the constructor's ordering.
   /// A node-graph ordering is given to CHOLMOD, which then tries no other. The analysis keeps
   /// the lower triangle of the permuted pattern, P A P^T, that factorize() hands to CHOLMOD.
-  void analyze(const SparsityPattern& pattern);
+  /// `equation_xy` (x and y of each equation's node; empty when unknown) lets the node
+  /// strategy dissect by coordinates; with OrderingEffort::quick METIS is then not tried.
+  void analyze(const SparsityPattern& pattern, std::span<const double> equation_xy = {},
+               OrderingEffort effort = OrderingEffort::thorough);
   /// Symbolic analysis with a known elimination order: `perm` is permutation() of an earlier
   /// analysis of the same pattern (perm[k]: the equation eliminated k-th). CHOLMOD takes it as
   /// it is (no postordering, no other method), so the analysis, and every factor of it, is

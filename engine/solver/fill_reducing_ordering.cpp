@@ -1,5 +1,7 @@
 #include "engine/solver/fill_reducing_ordering.hpp"
 
+#include "engine/solver/coordinate_dissection.hpp"
+
 #include <amd.h>
 #include <metis.h>
 
@@ -68,6 +70,8 @@ std::string_view fill_ordering_name(FillOrdering ordering) {
       return "node";
     case FillOrdering::cholmod_amd:
       return "cholmod_amd";
+    case FillOrdering::node_geometric:
+      return "node_geometric";
   }
   return "unknown";
 }
@@ -75,7 +79,7 @@ std::string_view fill_ordering_name(FillOrdering ordering) {
 std::optional<FillOrdering> fill_ordering_from_name(std::string_view name) {
   for (const FillOrdering o :
        {FillOrdering::cholmod, FillOrdering::node_metis, FillOrdering::node_amd, FillOrdering::node,
-        FillOrdering::cholmod_amd})
+        FillOrdering::cholmod_amd, FillOrdering::node_geometric})
     if (fill_ordering_name(o) == name) return o;
   return std::nullopt;
 }
@@ -84,11 +88,17 @@ std::vector<std::int32_t> equation_groups(const SparsityPattern& pattern) {
   return groups_of(closed_adjacency(pattern), pattern.n);
 }
 
-std::vector<std::int32_t> node_graph_ordering(const SparsityPattern& pattern,
-                                              FillOrdering ordering) {
-  if (ordering != FillOrdering::node_metis && ordering != FillOrdering::node_amd)
-    throw std::invalid_argument("node_graph_ordering: AMD or METIS only, not " +
+std::vector<std::int32_t> node_graph_ordering(const SparsityPattern& pattern, FillOrdering ordering,
+                                              std::span<const double> equation_xy) {
+  if (ordering != FillOrdering::node_metis && ordering != FillOrdering::node_amd &&
+      ordering != FillOrdering::node_geometric)
+    throw std::invalid_argument("node_graph_ordering: AMD, METIS or coordinates only, not " +
                                 std::string(fill_ordering_name(ordering)));
+  if (ordering == FillOrdering::node_geometric &&
+      equation_xy.size() != 2 * static_cast<std::size_t>(pattern.n))
+    throw std::invalid_argument("node_graph_ordering: " + std::to_string(equation_xy.size()) +
+                                " coordinates for " + std::to_string(pattern.n) +
+                                " equations (two each)");
   const Adjacency dofs = closed_adjacency(pattern);
   const std::vector<std::int32_t> start = groups_of(dofs, pattern.n);
   const auto num_groups = static_cast<std::int32_t>(start.size()) - 1;
@@ -115,6 +125,13 @@ std::vector<std::int32_t> node_graph_ordering(const SparsityPattern& pattern,
   std::vector<std::int32_t> order(static_cast<std::size_t>(num_groups));
   if (adjncy.empty()) {
     for (std::int32_t g = 0; g < num_groups; ++g) order[g] = g;  // nothing to reduce
+  } else if (ordering == FillOrdering::node_geometric) {
+    std::vector<double> x(static_cast<std::size_t>(num_groups)), y(x.size());
+    for (std::int32_t g = 0; g < num_groups; ++g) {
+      x[g] = equation_xy[2 * static_cast<std::size_t>(start[g])];
+      y[g] = equation_xy[2 * static_cast<std::size_t>(start[g]) + 1];
+    }
+    order = coordinate_dissection_order(GraphView{xadj, adjncy}, x, y);
   } else if (ordering == FillOrdering::node_metis) {
     idx_t options[METIS_NOPTIONS];
     METIS_SetDefaultOptions(options);

@@ -6,6 +6,7 @@
 // equations together gives the same fill as ordering the dof graph, for much less work.
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -15,12 +16,19 @@ namespace rockdd {
 
 /// How CholmodSolver::analyze orders the equations.
 enum class FillOrdering {
-  cholmod,      // CHOLMOD's own strategy on the dof graph: AMD, and METIS when AMD fills badly
-  node_metis,   // METIS nested dissection (METIS_NodeND) of the node graph
-  node_amd,     // AMD of the node graph
-  node,         // cholmod_amd, and METIS of the node graph when AMD fills badly (CHOLMOD's test)
-  cholmod_amd,  // CHOLMOD's AMD of the dof graph alone
+  cholmod,         // CHOLMOD's own strategy on the dof graph: AMD, and METIS when AMD fills badly
+  node_metis,      // METIS nested dissection (METIS_NodeND) of the node graph
+  node_amd,        // AMD of the node graph
+  node,            // cholmod_amd, and METIS of the node graph when AMD fills badly (CHOLMOD's test)
+  cholmod_amd,     // CHOLMOD's AMD of the dof graph alone
+  node_geometric,  // nested dissection of the node graph by the nodes' coordinates, then CAMD
 };
+
+/// What a fill-reducing ordering may cost. A system factorized once tries a nested dissection
+/// only where AMD fills badly (CHOLMOD's test), and then the quick one by coordinates alone;
+/// one factorized many times tries that one wherever AMD's factor is costly, and METIS's where
+/// AMD fills badly. Each keeps the smallest factor.
+enum class OrderingEffort { quick, thorough };
 
 std::string_view fill_ordering_name(FillOrdering ordering);
 /// The ordering fill_ordering_name() calls `name`; nullopt for any other text.
@@ -31,11 +39,13 @@ std::optional<FillOrdering> fill_ordering_from_name(std::string_view name);
 /// stiffness layout each run is the free dofs of one node.
 std::vector<std::int32_t> equation_groups(const SparsityPattern& pattern);
 
-/// The elimination order of the equations by AMD or METIS (FillOrdering::node_amd or
-/// node_metis) of the node graph: perm[k] is the equation eliminated k-th, the equations of
-/// each group of equation_groups() consecutive and in increasing order.
+/// The elimination order of the equations by AMD, METIS or the coordinates' nested
+/// dissection (FillOrdering::node_amd, node_metis, node_geometric) of the node graph: perm[k]
+/// is the equation eliminated k-th, the equations of each group of equation_groups()
+/// consecutive and in increasing order. `equation_xy` (x and y of each equation's node, two
+/// values an equation) is read by node_geometric only, which needs it.
 /// Deterministic: METIS runs with its fixed default seed.
-std::vector<std::int32_t> node_graph_ordering(const SparsityPattern& pattern,
-                                              FillOrdering ordering);
+std::vector<std::int32_t> node_graph_ordering(const SparsityPattern& pattern, FillOrdering ordering,
+                                              std::span<const double> equation_xy = {});
 
 }  // namespace rockdd

@@ -23,10 +23,21 @@ LinearSystem::~LinearSystem() {
 
 void LinearSystem::rebuild(std::span<const std::int32_t> conn, std::int32_t num_nodes,
                            std::span<const std::int32_t> equation, std::int32_t num_equations,
-                           bool contact_springs) {
+                           bool contact_springs, const OrderingHints& ordering) {
   await_analysis();  // the solver's last analysis is replaced
   ScopedTimer timer(timers_.layout);
   num_equations_ = num_equations;
+  equation_xy_.clear();
+  ordering_effort_ = ordering.effort;
+  if (const std::span<const double> node_xy = ordering.node_xy;
+      node_xy.size() == 2 * static_cast<std::size_t>(num_nodes)) {
+    equation_xy_.resize(2 * static_cast<std::size_t>(num_equations));
+    for (std::size_t d = 0; d < equation.size(); ++d)
+      if (const std::int32_t eq = equation[d]; eq >= 0) {
+        equation_xy_[2 * static_cast<std::size_t>(eq)] = node_xy[d & ~std::size_t{1}];
+        equation_xy_[2 * static_cast<std::size_t>(eq) + 1] = node_xy[d | 1];
+      }
+  }
   contact_springs_ = contact_springs;
   layout_ = build_sparsity_pattern(conn, num_nodes, equation);
   // CHOLMOD's analysis needs the pattern alone: it runs beside the scatter map and the
@@ -56,12 +67,14 @@ void LinearSystem::await_analysis() {
 void LinearSystem::analyze() {
   const SparsityPattern& pattern = layout_.pattern;
   if (!mesh_slot_) {
-    solver_.analyze(pattern);
+    solver_.analyze(pattern, equation_xy_, ordering_effort_);
     return;
   }
   // The stored entry holds the pattern it was computed for: another restraint, contact or
   // model of the same mesh is a miss, never another pattern's ordering.
-  const std::string key = solver_.ordering_key();
+  // The effort chooses among the orderings too: a scene factorized once stores another.
+  const std::string key = solver_.ordering_key() + " effort " +
+                          (ordering_effort_ == OrderingEffort::quick ? "quick" : "thorough");
   if (std::optional<CachedOrdering> stored =
           read_cached_ordering(*mesh_slot_, key, pattern.col_ptr, pattern.row_idx)) {
     if (const std::optional<FillOrdering> method = fill_ordering_from_name(stored->method)) {
@@ -70,7 +83,7 @@ void LinearSystem::analyze() {
       return;
     }
   }
-  solver_.analyze(pattern);
+  solver_.analyze(pattern, equation_xy_, ordering_effort_);
   write_cached_ordering(
       *mesh_slot_, key, pattern.col_ptr, pattern.row_idx,
       {solver_.permutation(), std::string(fill_ordering_name(solver_.stats().ordering))});

@@ -33,6 +33,12 @@ struct DiagonalSprings {
   std::span<const double> stiffness;
 };
 
+/// What the fill-reducing ordering may use besides the pattern.
+struct OrderingHints {
+  std::span<const double> node_xy;                   // x and y of each node; empty: unknown
+  OrderingEffort effort = OrderingEffort::thorough;  // quick when factorized once
+};
+
 /// Pattern, values and factor of K_eff = K + c M (+ restraint springs, + contact springs).
 class LinearSystem {
  public:
@@ -51,9 +57,10 @@ class LinearSystem {
   /// equations `equation` (per dof, -1 when prescribed). CHOLMOD's analysis runs beside the
   /// scatter map; the solver waits for it before it factorizes. With `contact_springs`, the
   /// springs of each open-close iteration join the assembled values at every factorization.
+  /// `ordering`: what the fill-reducing ordering may use besides the pattern.
   void rebuild(std::span<const std::int32_t> conn, std::int32_t num_nodes,
                std::span<const std::int32_t> equation, std::int32_t num_equations,
-               bool contact_springs);
+               bool contact_springs, const OrderingHints& ordering = {});
   /// Waits for the analysis rebuild() started, and rethrows what it threw.
   void await_analysis();
 
@@ -112,6 +119,8 @@ class LinearSystem {
   StageTimers& timers_;
   bool factor_updates_;
   StiffnessLayout layout_;
+  std::vector<double> equation_xy_;  // x and y of each equation's node, for the ordering
+  OrderingEffort ordering_effort_ = OrderingEffort::thorough;
   std::int32_t num_equations_ = 0;
   CholmodSolver solver_;
   std::optional<MeshCacheSlot> mesh_slot_;  // until the first analysis has used it
