@@ -24,6 +24,7 @@ namespace {
 struct System {
   StiffnessLayout layout;
   std::vector<double> values, rhs, x;
+  std::vector<double> equation_xy;  // x and y of each equation's node
 };
 
 System& system_for(long dofs) {
@@ -40,6 +41,12 @@ System& system_for(long dofs) {
     slot->values.assign(static_cast<std::size_t>(slot->layout.pattern.nnz()), 0.0);
     assemble_stiffness(model, coloring, slot->layout, bc.equation, 0.0, slot->values);
     slot->rhs.assign(static_cast<std::size_t>(bc.num_equations), 1.0);
+    slot->equation_xy.resize(2 * static_cast<std::size_t>(bc.num_equations));
+    for (std::size_t d = 0; d < bc.equation.size(); ++d)
+      if (const std::int32_t eq = bc.equation[d]; eq >= 0) {
+        slot->equation_xy[2 * static_cast<std::size_t>(eq)] = model.X[d & ~std::size_t{1}];
+        slot->equation_xy[2 * static_cast<std::size_t>(eq) + 1] = model.X[d | 1];
+      }
     slot->x.resize(slot->rhs.size());
   }
   return *slot;
@@ -68,14 +75,16 @@ void report_analysis(benchmark::State& state, const System& s, const SolverStats
 
 /// The symbolic analysis alone, with CHOLMOD's own ordering of the dof graph (ordering 0:
 /// AMD, then METIS where AMD fills badly; the old default) against the node strategy (3:
-/// CHOLMOD's AMD, then METIS of the node graph where AMD fills badly) and the orderings of
-/// the node graph alone (1: METIS, 2: AMD) given to CHOLMOD.
+/// CHOLMOD's AMD, then the dissection by coordinates where AMD's factor is costly and METIS
+/// of the node graph where AMD fills badly, as for a system factorized many times) and the
+/// orderings of the node graph alone (1: METIS, 2: AMD, 5: the dissection by coordinates)
+/// given to CHOLMOD. Every analysis is given the nodes' coordinates.
 void BM_Analyze(benchmark::State& state) {
   System& s = system_for(state.range(0));
   SolverStats stats;
   for (auto _ : state) {
     CholmodSolver solver(ordering_arg(state));
-    solver.analyze(s.layout.pattern);
+    solver.analyze(s.layout.pattern, s.equation_xy);
     stats = solver.stats();
   }
   report_analysis(state, s, stats);
@@ -84,7 +93,7 @@ void BM_Analyze(benchmark::State& state) {
 void BM_Refactorize(benchmark::State& state) {
   System& s = system_for(state.range(0));
   CholmodSolver solver(ordering_arg(state));
-  solver.analyze(s.layout.pattern);
+  solver.analyze(s.layout.pattern, s.equation_xy);
   solver.factorize(s.values.data());
   for (auto _ : state) solver.factorize(s.values.data());
   report(state, s, solver.stats(), solver.stats().last_factor_flops);
@@ -96,7 +105,7 @@ void BM_AnalyzeFactorizeSolve(benchmark::State& state) {
   SolverStats stats;
   for (auto _ : state) {
     CholmodSolver solver(ordering_arg(state));
-    solver.analyze(s.layout.pattern);
+    solver.analyze(s.layout.pattern, s.equation_xy);
     solver.factorize(s.values.data());
     solver.solve(s.rhs.data(), s.x.data());
     stats = solver.stats();
@@ -108,7 +117,7 @@ void BM_AnalyzeFactorizeSolve(benchmark::State& state) {
 void BM_Solve(benchmark::State& state) {
   System& s = system_for(state.range(0));
   CholmodSolver solver(ordering_arg(state));
-  solver.analyze(s.layout.pattern);
+  solver.analyze(s.layout.pattern, s.equation_xy);
   solver.factorize(s.values.data());
   for (auto _ : state) solver.solve(s.rhs.data(), s.x.data());
   state.counters["dofs"] = s.layout.pattern.n;
@@ -122,7 +131,7 @@ void BM_SolveColumns(benchmark::State& state) {
   System& s = system_for(state.range(0));
   const auto columns = static_cast<int>(state.range(1));
   CholmodSolver solver(FillOrdering::node);
-  solver.analyze(s.layout.pattern);
+  solver.analyze(s.layout.pattern, s.equation_xy);
   solver.factorize(s.values.data());
   std::vector<double> b(s.rhs.size() * static_cast<std::size_t>(columns), 1.0), x(b.size());
   for (auto _ : state) solver.solve(b.data(), x.data(), columns);
@@ -135,9 +144,9 @@ void BM_SolveColumns(benchmark::State& state) {
 }
 
 /// Sizes by orderings (FillOrdering: 0 CHOLMOD's own, the old default; 3 the node strategy,
-/// the new default; 1 METIS and 2 AMD of the node graph).
+/// the new default; 1 METIS, 2 AMD and 5 the dissection by coordinates of the node graph).
 void sizes(benchmark::internal::Benchmark* b) {
-  b->ArgsProduct({{10'000, 100'000, 1'000'000}, {0, 3, 1, 2}})
+  b->ArgsProduct({{10'000, 100'000, 1'000'000}, {0, 3, 1, 2, 5}})
       ->ArgNames({"dofs", "ordering"})
       ->Unit(benchmark::kMillisecond)
       ->UseRealTime();
