@@ -95,9 +95,9 @@ bool amd_fills_badly(double flops, double factor_nonzeros, double matrix_nonzero
 }
 
 /// A system factorized many times tries the dissection by coordinates when AMD's factor needs
-/// at least this many flops an equation. The dissection costs about 0.7-1.5 us an equation
-/// (node graph, cuts, CAMD and the analysis of its order), and a factorization at 10^4 dofs
-/// runs at 3-6 GFLOP/s: from 10^4 flops an equation a factorization costs about as much, and
+/// at least this many flops an equation. The dissection costs 0.6-1.3 us an equation (node
+/// graph, cuts, CAMD and the analysis of its order), and a factorization at 10^4 dofs runs at
+/// 3-6 GFLOP/s: from 10^4 flops an equation a factorization costs about twice as much, and
 /// the dissection took 37-57 % off AMD's flops on the disk meshes (docs/performance.md, "Nested
 /// dissection by coordinates"), paid back within a few factorizations. The compression
 /// specimen's AMD factors (2.2k flops an equation, 123 analyses a realization) are not tried:
@@ -340,8 +340,8 @@ void CholmodSolver::analyze(const SparsityPattern& pattern, std::span<const doub
     // first (CHOLMOD's own, on the dof graph: it merges the dofs of a node itself and costs
     // less than building the node graph), then nested dissections of the node graph, keeping
     // the smallest factor. CHOLMOD's METIS would build and compress the dof graph first. The
-    // dissection by coordinates takes a fifth of METIS's time for 1-5 % more flops: a system
-    // factorized once takes it instead of METIS's.
+    // dissection by coordinates takes a third of METIS's time, for 1-5 % more flops on the disk
+    // meshes and 3 % fewer on grids: a system factorized once takes it instead of METIS's.
     s.symbolic = s.analyze_with(pattern, nullptr, CHOLMOD_AMD);
     kept = FillOrdering::cholmod_amd;
     if (s.symbolic != nullptr) {
