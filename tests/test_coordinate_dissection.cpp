@@ -255,6 +255,9 @@ TEST(CoordinateDissection, DegenerateGraphsGetValidOrders) {
     const MeshGraph g = grid(5, 4, 0.0, 1);
     const std::vector<double> short_x(g.x.begin(), g.x.end() - 1);
     EXPECT_THROW(coordinate_dissection_order(g.view(), short_x, g.y), std::invalid_argument);
+    std::vector<double> nan_y = g.y;
+    nan_y[7] = std::nan("");
+    EXPECT_THROW(coordinate_dissection_order(g.view(), g.x, nan_y), std::invalid_argument);
   }
 }
 
