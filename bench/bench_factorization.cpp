@@ -41,12 +41,7 @@ System& system_for(long dofs) {
     slot->values.assign(static_cast<std::size_t>(slot->layout.pattern.nnz()), 0.0);
     assemble_stiffness(model, coloring, slot->layout, bc.equation, 0.0, slot->values);
     slot->rhs.assign(static_cast<std::size_t>(bc.num_equations), 1.0);
-    slot->equation_xy.resize(2 * static_cast<std::size_t>(bc.num_equations));
-    for (std::size_t d = 0; d < bc.equation.size(); ++d)
-      if (const std::int32_t eq = bc.equation[d]; eq >= 0) {
-        slot->equation_xy[2 * static_cast<std::size_t>(eq)] = model.X[d & ~std::size_t{1}];
-        slot->equation_xy[2 * static_cast<std::size_t>(eq) + 1] = model.X[d | 1];
-      }
+    slot->equation_xy = equation_positions(model.X, bc.equation, bc.num_equations);
     slot->x.resize(slot->rhs.size());
   }
   return *slot;

@@ -88,6 +88,18 @@ std::vector<std::int32_t> equation_groups(const SparsityPattern& pattern) {
   return groups_of(closed_adjacency(pattern), pattern.n);
 }
 
+std::vector<double> equation_positions(std::span<const double> node_xy,
+                                       std::span<const std::int32_t> equation,
+                                       std::int32_t num_equations) {
+  std::vector<double> xy(2 * static_cast<std::size_t>(num_equations));
+  for (std::size_t d = 0; d < equation.size(); ++d)
+    if (const std::int32_t eq = equation[d]; eq >= 0) {
+      xy[2 * static_cast<std::size_t>(eq)] = node_xy[d & ~std::size_t{1}];
+      xy[2 * static_cast<std::size_t>(eq) + 1] = node_xy[d | 1];
+    }
+  return xy;
+}
+
 std::vector<std::int32_t> node_graph_ordering(const SparsityPattern& pattern, FillOrdering ordering,
                                               std::span<const double> equation_xy) {
   if (ordering != FillOrdering::node_metis && ordering != FillOrdering::node_amd &&

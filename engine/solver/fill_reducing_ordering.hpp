@@ -19,7 +19,7 @@ enum class FillOrdering {
   cholmod,         // CHOLMOD's own strategy on the dof graph: AMD, and METIS when AMD fills badly
   node_metis,      // METIS nested dissection (METIS_NodeND) of the node graph
   node_amd,        // AMD of the node graph
-  node,            // cholmod_amd, and METIS of the node graph when AMD fills badly (CHOLMOD's test)
+  node,            // cholmod_amd, then the dissections below where they may pay (OrderingEffort)
   cholmod_amd,     // CHOLMOD's AMD of the dof graph alone
   node_geometric,  // nested dissection of the node graph by the nodes' coordinates, then CAMD
 };
@@ -38,6 +38,12 @@ std::optional<FillOrdering> fill_ordering_from_name(std::string_view name);
 /// pattern (diagonal included) are identical: run g is [start[g], start[g + 1]). In a
 /// stiffness layout each run is the free dofs of one node.
 std::vector<std::int32_t> equation_groups(const SparsityPattern& pattern);
+
+/// x and y of each equation's node (two values an equation), from the nodes' positions
+/// `node_xy` (two values a node) and the equation of each dof (-1 where prescribed).
+std::vector<double> equation_positions(std::span<const double> node_xy,
+                                       std::span<const std::int32_t> equation,
+                                       std::int32_t num_equations);
 
 /// The elimination order of the equations by AMD, METIS or the coordinates' nested
 /// dissection (FillOrdering::node_amd, node_metis, node_geometric) of the node graph: perm[k]

@@ -27,17 +27,10 @@ void LinearSystem::rebuild(std::span<const std::int32_t> conn, std::int32_t num_
   await_analysis();  // the solver's last analysis is replaced
   ScopedTimer timer(timers_.layout);
   num_equations_ = num_equations;
-  equation_xy_.clear();
   ordering_effort_ = ordering.effort;
-  if (const std::span<const double> node_xy = ordering.node_xy;
-      node_xy.size() == 2 * static_cast<std::size_t>(num_nodes)) {
-    equation_xy_.resize(2 * static_cast<std::size_t>(num_equations));
-    for (std::size_t d = 0; d < equation.size(); ++d)
-      if (const std::int32_t eq = equation[d]; eq >= 0) {
-        equation_xy_[2 * static_cast<std::size_t>(eq)] = node_xy[d & ~std::size_t{1}];
-        equation_xy_[2 * static_cast<std::size_t>(eq) + 1] = node_xy[d | 1];
-      }
-  }
+  equation_xy_.clear();
+  if (ordering.node_xy.size() == 2 * static_cast<std::size_t>(num_nodes))
+    equation_xy_ = equation_positions(ordering.node_xy, equation, num_equations);
   contact_springs_ = contact_springs;
   layout_ = build_sparsity_pattern(conn, num_nodes, equation);
   // CHOLMOD's analysis needs the pattern alone: it runs beside the scatter map and the
